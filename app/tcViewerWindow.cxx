@@ -1,0 +1,650 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcViewerWindow.h"
+
+#include "tcCurvature.h"
+#include "tcMeshPreparation.h"
+#include "tcMeshReader.h"
+
+#include "tc/array_names.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QLabel>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <QStackedWidget>
+#include <QStatusBar>
+#include <QVBoxLayout>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <vtkActor.h>
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkLookupTable.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextProperty.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+const char* const kStageNames[] = { "input", "preparation", "curvature" };
+const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature" };
+
+/// Blue (concave) - white - red (convex), symmetric about 0 over 95% of the values.
+void DivergingColors(vtkLookupTable* lut, vtkDataArray* values, int component)
+{
+  std::vector<double> magnitudes(values->GetNumberOfTuples());
+  for (size_t i = 0; i < magnitudes.size(); ++i)
+  {
+    magnitudes[i] = std::abs(values->GetComponent(static_cast<vtkIdType>(i), component));
+  }
+  double limit = 1.0;
+  if (!magnitudes.empty())
+  {
+    const size_t k = std::min(magnitudes.size() - 1, magnitudes.size() * 95 / 100);
+    std::nth_element(magnitudes.begin(), magnitudes.begin() + k, magnitudes.end());
+    limit = magnitudes[k] > 0.0 ? magnitudes[k] : 1.0;
+  }
+  lut->SetNumberOfTableValues(256);
+  lut->SetTableRange(-limit, limit);
+  for (int i = 0; i < 256; ++i)
+  {
+    const double t = i / 255.0;
+    const double s = t < 0.5 ? t / 0.5 : (t - 0.5) / 0.5;
+    if (t < 0.5)
+    {
+      lut->SetTableValue(i, 0.23 + 0.77 * s, 0.30 + 0.70 * s, 0.75 + 0.25 * s, 1.0);
+    }
+    else
+    {
+      lut->SetTableValue(i, 1.0 - 0.29 * s, 1.0 - 0.98 * s, 1.0 - 0.85 * s, 1.0);
+    }
+  }
+  lut->Build();
+}
+
+/// A rainbow over the array's range, for arrays that are not signed curvatures.
+void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
+{
+  double range[2];
+  values->GetRange(range, component);
+  if (range[1] <= range[0])
+  {
+    range[1] = range[0] + 1.0;
+  }
+  lut->SetNumberOfTableValues(256);
+  lut->SetHueRange(0.667, 0.0);
+  lut->SetSaturationRange(1.0, 1.0);
+  lut->SetValueRange(1.0, 1.0);
+  lut->SetTableRange(range);
+  lut->ForceBuild();
+}
+}
+
+tcViewerWindow::tcViewerWindow()
+{
+  this->Preparation->SetInputConnection(this->Reader->GetOutputPort());
+  this->Curvature->SetInputConnection(this->Preparation->GetOutputPort());
+  for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(this->Reader.Get()),
+         static_cast<vtkAlgorithm*>(this->Preparation.Get()),
+         static_cast<vtkAlgorithm*>(this->Curvature.Get()) })
+  {
+    a->AddObserver(vtkCommand::ProgressEvent, this, &tcViewerWindow::OnProgress);
+    a->AddObserver(vtkCommand::ErrorEvent, this, &tcViewerWindow::OnError);
+  }
+  this->BuildUi();
+  this->setAcceptDrops(true);
+}
+
+tcViewerWindow::~tcViewerWindow() = default;
+
+int tcViewerWindow::StageFromName(const QString& name)
+{
+  for (int s = 0; s < StageCount; ++s)
+  {
+    if (name.compare(kStageNames[s], Qt::CaseInsensitive) == 0)
+    {
+      return s;
+    }
+  }
+  return -1;
+}
+
+void tcViewerWindow::BuildUi()
+{
+  this->setWindowTitle("TriChart Viewer");
+  this->resize(1100, 750);
+
+  // 3-D view.
+  this->View = new QVTKOpenGLNativeWidget(this);
+  this->View->setRenderWindow(this->RenderWindow);
+  this->RenderWindow->AddRenderer(this->Renderer);
+  this->Renderer->SetBackground(0.32, 0.34, 0.43);
+  this->SurfaceActor->SetMapper(this->SurfaceMapper);
+  this->LineActor->SetMapper(this->LineMapper);
+  this->LineMapper->ScalarVisibilityOff();
+  this->LineMapper->SetResolveCoincidentTopologyToPolygonOffset();
+  this->LineActor->GetProperty()->SetColor(0.05, 0.05, 0.05);
+  this->LineActor->GetProperty()->SetLineWidth(2.0);
+  this->Renderer->AddActor(this->SurfaceActor);
+  this->Renderer->AddActor(this->LineActor);
+  this->Legend->SetNumberOfLabels(5);
+  this->Legend->SetWidth(0.08);
+  this->Legend->SetHeight(0.5);
+  this->Legend->GetTitleTextProperty()->SetFontSize(12);
+  this->Renderer->AddActor2D(this->Legend);
+  this->SurfaceActor->VisibilityOff();
+  this->LineActor->VisibilityOff();
+  this->Legend->VisibilityOff();
+  this->setCentralWidget(this->View);
+
+  // Pipeline panel: stages, their parameters, apply, display options.
+  auto* dock = new QDockWidget("Pipeline", this);
+  dock->setObjectName("PipelineDock");
+  dock->setFeatures(QDockWidget::NoDockWidgetFeatures);
+  auto* panel = new QWidget(dock);
+  auto* layout = new QVBoxLayout(panel);
+  this->Stages = new QListWidget(panel);
+  for (const char* label : kStageLabels)
+  {
+    this->Stages->addItem(label);
+  }
+  this->Stages->setMaximumHeight(90);
+  layout->addWidget(new QLabel("<b>Stages</b>", panel));
+  layout->addWidget(this->Stages);
+  this->Panels = new QStackedWidget(panel);
+  this->Panels->addWidget(new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files.", panel));
+  this->Panels->addWidget(this->BuildPreparationPanel());
+  this->Panels->addWidget(this->BuildCurvaturePanel());
+  layout->addWidget(this->Panels);
+  auto* apply = new QPushButton("Apply", panel);
+  layout->addWidget(apply);
+
+  layout->addWidget(new QLabel("<b>Display</b>", panel));
+  auto* form = new QFormLayout();
+  this->ColorBy = new QComboBox(panel);
+  form->addRow("Colour by", this->ColorBy);
+  this->ShowLines = new QCheckBox("Crest lines", panel);
+  this->ShowLines->setChecked(true);
+  form->addRow(this->ShowLines);
+  this->ShowEdges = new QCheckBox("Mesh edges", panel);
+  form->addRow(this->ShowEdges);
+  layout->addLayout(form);
+  this->Info = new QLabel(panel);
+  this->Info->setWordWrap(true);
+  this->Info->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  layout->addWidget(this->Info, 1, Qt::AlignTop);
+  dock->setWidget(panel);
+  dock->setMinimumWidth(260);
+  this->addDockWidget(Qt::LeftDockWidgetArea, dock);
+
+  connect(this->Stages, &QListWidget::currentRowChanged, this,
+    [this](int row)
+    {
+      this->Panels->setCurrentIndex(std::max(0, row));
+      if (!this->Running && row >= 0 && row != this->CurrentStage && !this->FileName.isEmpty())
+      {
+        this->ShowStage(row);
+      }
+    });
+  connect(apply, &QPushButton::clicked, this, [this]() { this->ShowStage(this->CurrentStage); });
+  connect(this->ColorBy, &QComboBox::currentTextChanged, this,
+    [this](const QString& name)
+    {
+      if (!this->Running)
+      {
+        this->SetColorArray(name);
+        this->RenderWindow->Render();
+      }
+    });
+  connect(this->ShowLines, &QCheckBox::toggled, this,
+    [this](bool on)
+    {
+      this->LineActor->SetVisibility(on && this->LineMapper->GetInput() &&
+        this->CurrentStage == CurvatureStage);
+      this->RenderWindow->Render();
+    });
+  connect(this->ShowEdges, &QCheckBox::toggled, this,
+    [this](bool on)
+    {
+      this->SurfaceActor->GetProperty()->SetEdgeVisibility(on);
+      this->RenderWindow->Render();
+    });
+
+  // Progress with cancel.
+  this->Progress = new QProgressBar(this);
+  this->Progress->setRange(0, 100);
+  this->Progress->setMaximumWidth(250);
+  this->Cancel = new QPushButton("Cancel", this);
+  this->Cancel->setEnabled(false);
+  this->statusBar()->addPermanentWidget(this->Progress);
+  this->statusBar()->addPermanentWidget(this->Cancel);
+  connect(this->Cancel, &QPushButton::clicked, this,
+    [this]()
+    {
+      this->Reader->AbortExecuteOn();
+      this->Preparation->AbortExecuteOn();
+      this->Curvature->AbortExecuteOn();
+    });
+
+  // Menus.
+  QMenu* file = this->menuBar()->addMenu("&File");
+  QAction* open = file->addAction("&Open...");
+  open->setShortcut(QKeySequence::Open);
+  connect(open, &QAction::triggered, this,
+    [this]()
+    {
+      const QString path = QFileDialog::getOpenFileName(this, "Open mesh", QString(),
+        "Meshes (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk);;All files (*)");
+      if (!path.isEmpty())
+      {
+        this->OpenFile(path, std::max(0, this->CurrentStage));
+      }
+    });
+  this->RecentMenu = file->addMenu("Open &Recent");
+  this->UpdateRecentMenu();
+  QAction* exportStage = file->addAction("&Export stage as VTP...");
+  connect(exportStage, &QAction::triggered, this,
+    [this]()
+    {
+      if (!this->Shown)
+      {
+        return;
+      }
+      const QString path = QFileDialog::getSaveFileName(
+        this, "Export stage", QString(kStageNames[this->CurrentStage]) + ".vtp", "VTP (*.vtp)");
+      if (!path.isEmpty())
+      {
+        vtkNew<vtkXMLPolyDataWriter> writer;
+        writer->SetInputData(this->Shown);
+        writer->SetFileName(path.toStdString().c_str());
+        if (writer->Write() != 1)
+        {
+          this->ReportError("Cannot write " + path);
+        }
+      }
+    });
+  QAction* shot = file->addAction("Save &screenshot...");
+  connect(shot, &QAction::triggered, this,
+    [this]()
+    {
+      const QString path =
+        QFileDialog::getSaveFileName(this, "Save screenshot", "trichart.png", "PNG (*.png)");
+      if (!path.isEmpty() && !this->SaveScreenshot(path))
+      {
+        this->ReportError("Cannot write " + path);
+      }
+    });
+  file->addSeparator();
+  QAction* quit = file->addAction("&Quit");
+  quit->setShortcut(QKeySequence::Quit);
+  connect(quit, &QAction::triggered, qApp, &QApplication::quit);
+}
+
+QWidget* tcViewerWindow::BuildPreparationPanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  this->MergeTolerance = new QDoubleSpinBox(w);
+  this->MergeTolerance->setDecimals(5);
+  this->MergeTolerance->setRange(0.0, 0.1);
+  this->MergeTolerance->setSingleStep(0.0001);
+  this->MergeTolerance->setValue(this->Preparation->GetMergeTolerance());
+  this->MergeTolerance->setToolTip("Merge points closer than this fraction of the diagonal");
+  form->addRow("MergeTolerance", this->MergeTolerance);
+  this->Orient = new QCheckBox(w);
+  this->Orient->setChecked(this->Preparation->GetOrient());
+  form->addRow("Orient", this->Orient);
+  this->SplitNonManifold = new QCheckBox(w);
+  this->SplitNonManifold->setChecked(this->Preparation->GetSplitNonManifold());
+  form->addRow("SplitNonManifold", this->SplitNonManifold);
+  return w;
+}
+
+QWidget* tcViewerWindow::BuildCurvaturePanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  auto spin = [w](int lo, int hi, int value)
+  {
+    auto* s = new QSpinBox(w);
+    s->setRange(lo, hi);
+    s->setValue(value);
+    return s;
+  };
+  this->MinNeighbors = spin(6, 1000, this->Curvature->GetMinNeighbors());
+  form->addRow("MinNeighbors", this->MinNeighbors);
+  this->MaxRings = spin(1, 20, this->Curvature->GetMaxRings());
+  form->addRow("MaxRings", this->MaxRings);
+  this->Degree = spin(2, 3, this->Curvature->GetDegree());
+  form->addRow("Degree", this->Degree);
+  this->Robust = new QCheckBox(w);
+  this->Robust->setChecked(this->Curvature->GetRobust());
+  form->addRow("Robust", this->Robust);
+  this->RobustIterations = spin(1, 10, this->Curvature->GetRobustIterations());
+  form->addRow("RobustIterations", this->RobustIterations);
+  this->CrestLines = new QCheckBox(w);
+  this->CrestLines->setChecked(this->Curvature->GetComputeCrestLines());
+  form->addRow("ComputeCrestLines", this->CrestLines);
+  this->CrestThreshold = new QDoubleSpinBox(w);
+  this->CrestThreshold->setRange(0.0, 100.0);
+  this->CrestThreshold->setDecimals(3);
+  this->CrestThreshold->setValue(this->Curvature->GetCrestStrengthThreshold());
+  form->addRow("CrestStrengthThreshold", this->CrestThreshold);
+  return w;
+}
+
+void tcViewerWindow::PushParameters()
+{
+  // Setting an unchanged value does not modify a filter, so only what changed re-runs.
+  this->Preparation->SetMergeTolerance(this->MergeTolerance->value());
+  this->Preparation->SetOrient(this->Orient->isChecked());
+  this->Preparation->SetSplitNonManifold(this->SplitNonManifold->isChecked());
+  this->Curvature->SetMinNeighbors(this->MinNeighbors->value());
+  this->Curvature->SetMaxRings(this->MaxRings->value());
+  this->Curvature->SetDegree(this->Degree->value());
+  this->Curvature->SetRobust(this->Robust->isChecked());
+  this->Curvature->SetRobustIterations(this->RobustIterations->value());
+  this->Curvature->SetComputeCrestLines(this->CrestLines->isChecked());
+  this->Curvature->SetCrestStrengthThreshold(this->CrestThreshold->value());
+}
+
+bool tcViewerWindow::OpenFile(const QString& path, int stage)
+{
+  this->FileName = path;
+  this->Reader->SetFileName(path.toStdString().c_str());
+  this->setWindowTitle("TriChart Viewer - " + QFileInfo(path).fileName());
+  const bool ok = this->ShowStage(stage);
+  if (ok)
+  {
+    this->AddRecentFile(path);
+    this->Renderer->ResetCamera();
+    this->RenderWindow->Render();
+  }
+  return ok;
+}
+
+bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
+{
+  this->Error.clear();
+  this->Running = true;
+  this->Cancel->setEnabled(true);
+  this->Progress->setValue(0);
+  algorithm->Update(port);
+  this->Running = false;
+  this->Cancel->setEnabled(false);
+  const bool aborted = this->Reader->GetAbortExecute() || this->Preparation->GetAbortExecute() ||
+    this->Curvature->GetAbortExecute();
+  if (aborted)
+  {
+    for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(this->Reader.Get()),
+           static_cast<vtkAlgorithm*>(this->Preparation.Get()),
+           static_cast<vtkAlgorithm*>(this->Curvature.Get()) })
+    {
+      a->AbortExecuteOff();
+      a->Modified(); // the cancelled result must not be reused
+    }
+    this->statusBar()->showMessage("Cancelled", 5000);
+    return false;
+  }
+  if (!this->Error.isEmpty())
+  {
+    this->ReportError(this->Error);
+    return false;
+  }
+  this->Progress->setValue(100);
+  this->statusBar()->showMessage("Ready");
+  return true;
+}
+
+bool tcViewerWindow::ShowStage(int stage)
+{
+  if (this->FileName.isEmpty() || stage < 0 || stage >= StageCount)
+  {
+    return false;
+  }
+  this->PushParameters();
+  vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature };
+  if (!this->Run(algorithms[stage]))
+  {
+    this->SurfaceActor->VisibilityOff();
+    this->LineActor->VisibilityOff();
+    this->Legend->VisibilityOff();
+    this->Info->setText("<font color='#b00'>" + this->Error.toHtmlEscaped() + "</font>");
+    this->RenderWindow->Render();
+    return false;
+  }
+  this->CurrentStage = stage;
+  {
+    const QSignalBlocker block(this->Stages);
+    this->Stages->setCurrentRow(stage);
+    this->Panels->setCurrentIndex(stage);
+  }
+  auto* surface = vtkPolyData::SafeDownCast(algorithms[stage]->GetOutputDataObject(0));
+  vtkPolyData* lines = stage == CurvatureStage ? this->Curvature->GetOutput(1) : nullptr;
+  this->Display(surface, lines);
+
+  QString info = QString("<b>%1</b><br>%2 points, %3 cells")
+                   .arg(kStageLabels[stage])
+                   .arg(surface->GetNumberOfPoints())
+                   .arg(surface->GetNumberOfCells());
+  const char* report = stage == InputStage ? this->Reader->GetReport()
+    : stage == PreparationStage            ? this->Preparation->GetReport()
+                                           : "";
+  if (report && *report)
+  {
+    info += "<br><pre>" + QString(report).toHtmlEscaped() + "</pre>";
+  }
+  if (lines)
+  {
+    info += QString("<br>%1 crest lines").arg(lines->GetNumberOfLines());
+  }
+  this->Info->setText(info);
+  return true;
+}
+
+void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines)
+{
+  this->Shown = vtkSmartPointer<vtkPolyData>::New();
+  this->Shown->ShallowCopy(surface);
+  this->SurfaceMapper->SetInputData(this->Shown);
+  this->SurfaceActor->VisibilityOn();
+  if (lines)
+  {
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->ShallowCopy(lines);
+    this->LineMapper->SetInputData(copy);
+  }
+  this->LineActor->SetVisibility(lines != nullptr && this->ShowLines->isChecked());
+  this->FillArrayChoices(this->Shown);
+}
+
+void tcViewerWindow::FillArrayChoices(vtkPolyData* surface)
+{
+  const QString previous = this->ColorBy->currentText();
+  {
+    const QSignalBlocker block(this->ColorBy);
+    this->ColorBy->clear();
+    this->ColorBy->addItem("Solid");
+    for (int i = 0; i < surface->GetPointData()->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* a = surface->GetPointData()->GetArray(i);
+      if (a && a->GetName() && a != surface->GetPointData()->GetNormals())
+      {
+        this->ColorBy->addItem(a->GetName());
+      }
+    }
+    for (int i = 0; i < surface->GetCellData()->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* a = surface->GetCellData()->GetArray(i);
+      if (a && a->GetName())
+      {
+        this->ColorBy->addItem(QString("cell:") + a->GetName());
+      }
+    }
+  }
+  // Keep the user's choice when the new output has it; curvature defaults to mean curvature.
+  QString choice = previous;
+  if (this->ColorBy->findText(choice) < 0 || choice == "Solid")
+  {
+    choice = this->ColorBy->findText(tc::kMeanCurvature) >= 0 ? tc::kMeanCurvature : "Solid";
+  }
+  this->SetColorArray(choice);
+}
+
+void tcViewerWindow::SetColorArray(const QString& name)
+{
+  {
+    const QSignalBlocker block(this->ColorBy);
+    const int index = this->ColorBy->findText(name);
+    this->ColorBy->setCurrentIndex(std::max(0, index));
+  }
+  const bool cell = name.startsWith("cell:");
+  const QString arrayName = cell ? name.mid(5) : name;
+  vtkDataArray* values = !this->Shown ? nullptr
+    : cell ? this->Shown->GetCellData()->GetArray(arrayName.toStdString().c_str())
+           : this->Shown->GetPointData()->GetArray(arrayName.toStdString().c_str());
+  if (!values)
+  {
+    this->SurfaceMapper->ScalarVisibilityOff();
+    this->SurfaceActor->GetProperty()->SetColor(0.85, 0.85, 0.85);
+    this->Legend->VisibilityOff();
+    return;
+  }
+  vtkNew<vtkLookupTable> lut;
+  const bool curvature = arrayName.contains("Curvature");
+  if (curvature)
+  {
+    DivergingColors(lut, values, 0);
+  }
+  else
+  {
+    RangeColors(lut, values, 0);
+  }
+  lut->SetVectorModeToComponent();
+  lut->SetVectorComponent(0);
+  this->SurfaceMapper->ScalarVisibilityOn();
+  if (cell)
+  {
+    this->SurfaceMapper->SetScalarModeToUseCellFieldData();
+  }
+  else
+  {
+    this->SurfaceMapper->SetScalarModeToUsePointFieldData();
+  }
+  this->SurfaceMapper->SelectColorArray(arrayName.toStdString().c_str());
+  this->SurfaceMapper->SetLookupTable(lut);
+  this->SurfaceMapper->UseLookupTableScalarRangeOn();
+  this->Legend->SetLookupTable(lut);
+  this->Legend->SetTitle(arrayName.toStdString().c_str());
+  this->Legend->VisibilityOn();
+}
+
+bool tcViewerWindow::SaveScreenshot(const QString& path)
+{
+  this->RenderWindow->Render();
+  QApplication::processEvents();
+  const QImage image = this->grab().toImage();
+  return !image.isNull() && image.save(path, "PNG");
+}
+
+void tcViewerWindow::ReportError(const QString& message)
+{
+  this->statusBar()->showMessage("Error: " + message.left(200), 10000);
+  if (this->Batch)
+  {
+    std::cerr << "trichart-viewer: error: " << message.toStdString() << "\n";
+  }
+  else
+  {
+    QMessageBox::warning(this, "TriChart", message);
+  }
+}
+
+void tcViewerWindow::AddRecentFile(const QString& path)
+{
+  QSettings settings("TriChart", "trichart-viewer");
+  QStringList files = settings.value("recentFiles").toStringList();
+  files.removeAll(QFileInfo(path).absoluteFilePath());
+  files.prepend(QFileInfo(path).absoluteFilePath());
+  settings.setValue("recentFiles", QStringList(files.mid(0, 8)));
+  this->UpdateRecentMenu();
+}
+
+void tcViewerWindow::UpdateRecentMenu()
+{
+  this->RecentMenu->clear();
+  QSettings settings("TriChart", "trichart-viewer");
+  for (const QString& path : settings.value("recentFiles").toStringList())
+  {
+    QAction* a = this->RecentMenu->addAction(path);
+    connect(a, &QAction::triggered, this,
+      [this, path]() { this->OpenFile(path, std::max(0, this->CurrentStage)); });
+  }
+  this->RecentMenu->setEnabled(!this->RecentMenu->isEmpty());
+}
+
+void tcViewerWindow::dragEnterEvent(QDragEnterEvent* event)
+{
+  if (event->mimeData()->hasUrls())
+  {
+    event->acceptProposedAction();
+  }
+}
+
+void tcViewerWindow::dropEvent(QDropEvent* event)
+{
+  const QList<QUrl> urls = event->mimeData()->urls();
+  if (!urls.isEmpty() && urls.first().isLocalFile())
+  {
+    this->OpenFile(urls.first().toLocalFile(), std::max(0, this->CurrentStage));
+  }
+}
+
+void tcViewerWindow::OnProgress(vtkObject* caller, unsigned long, void*)
+{
+  auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+  this->Progress->setValue(static_cast<int>(100 * algorithm->GetProgress()));
+  this->statusBar()->showMessage(QString("Running %1...").arg(algorithm->GetClassName()));
+  // Keep the window (and its Cancel button) responsive during long runs.
+  QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
+  QApplication::processEvents();
+}
+
+void tcViewerWindow::OnError(vtkObject*, unsigned long, void* callData)
+{
+  if (callData && this->Error.isEmpty())
+  {
+    // VTK prefixes the message with "ERROR: In file, line N\nclass (address): ".
+    QString text = QString::fromUtf8(static_cast<const char*>(callData)).trimmed();
+    const int colon = text.indexOf("): ");
+    this->Error = colon >= 0 ? text.mid(colon + 3).trimmed() : text;
+  }
+}

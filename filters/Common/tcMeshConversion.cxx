@@ -1,0 +1,239 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcMeshConversion.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSignedCharArray.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <type_traits>
+
+#include <sstream>
+
+namespace tcvtk
+{
+namespace
+{
+void CopyPoints(vtkPolyData* input, std::vector<double>& points)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  points.resize(3 * n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    input->GetPoint(i, &points[3 * i]);
+  }
+}
+}
+
+tc::PolygonSoup ToPolygonSoup(
+  vtkPolyData* input, std::vector<int64_t>& polygonCell, int64_t& ignoredCells)
+{
+  tc::PolygonSoup soup;
+  polygonCell.clear();
+  // vtkPolyData numbers its cells verts, lines, polys, strips.
+  ignoredCells = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  int64_t cellId = ignoredCells;
+  CopyPoints(input, soup.points);
+  const vtkIdType* ids = nullptr;
+  vtkIdType n = 0;
+  auto it = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    it->GetCurrentCell(n, ids);
+    std::vector<int64_t> polygon(ids, ids + n);
+    soup.addPolygon(polygon.data(), n);
+    polygonCell.push_back(cellId++);
+  }
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    strips->GetCurrentCell(n, ids);
+    for (vtkIdType k = 0; k + 2 < n; ++k)
+    {
+      // Alternate the winding so every triangle of the strip keeps the strip's orientation.
+      const int64_t tri[3] = { ids[k], ids[k + 1 + (k % 2)], ids[k + 2 - (k % 2)] };
+      soup.addPolygon(tri, 3);
+      polygonCell.push_back(cellId);
+    }
+    ++cellId;
+  }
+  return soup;
+}
+
+bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error)
+{
+  const vtkIdType nonSurface =
+    input->GetNumberOfVerts() + input->GetNumberOfLines() + input->GetNumberOfStrips();
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType nf = polys->GetNumberOfCells();
+  if (nf == 0)
+  {
+    error = "the input has no triangles; give a surface mesh";
+    return false;
+  }
+  if (nonSurface > 0 || polys->GetNumberOfConnectivityIds() != 3 * nf)
+  {
+    error = "the input has cells that are not triangles; run tcMeshPreparation first";
+    return false;
+  }
+  if (input->GetNumberOfPoints() > INT32_MAX)
+  {
+    error = "the input has more than 2^31 points, which TriChart does not support";
+    return false;
+  }
+  CopyPoints(input, mesh.points);
+  mesh.triangles.resize(3 * nf);
+  const vtkIdType* ids = nullptr;
+  vtkIdType n = 0;
+  vtkIdType f = 0;
+  auto it = vtk::TakeSmartPointer(polys->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++f)
+  {
+    it->GetCurrentCell(n, ids);
+    for (int i = 0; i < 3; ++i)
+    {
+      mesh.triangles[3 * f + i] = static_cast<int32_t>(ids[i]);
+    }
+  }
+  return true;
+}
+
+void FromPolygonSoup(const tc::PolygonSoup& soup, vtkPolyData* output)
+{
+  auto coords = vtkSmartPointer<vtkDoubleArray>::New();
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(soup.numPoints());
+  std::copy(soup.points.begin(), soup.points.end(), coords->GetPointer(0));
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(coords);
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(soup.offsets.size()));
+  std::copy(soup.offsets.begin(), soup.offsets.end(), offsets->GetPointer(0));
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(soup.connectivity.size()));
+  std::copy(soup.connectivity.begin(), soup.connectivity.end(), connectivity->GetPointer(0));
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetPolys(cells);
+}
+
+void FromTriMesh(const tc::TriMesh& mesh, vtkPolyData* output)
+{
+  auto coords = vtkSmartPointer<vtkDoubleArray>::New();
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(mesh.numPoints());
+  std::copy(mesh.points.begin(), mesh.points.end(), coords->GetPointer(0));
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(coords);
+
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  const int64_t nf = mesh.numTriangles();
+  offsets->SetNumberOfValues(nf + 1);
+  connectivity->SetNumberOfValues(3 * nf);
+  for (int64_t f = 0; f <= nf; ++f)
+  {
+    offsets->SetValue(f, 3 * f);
+  }
+  for (int64_t k = 0; k < 3 * nf; ++k)
+  {
+    connectivity->SetValue(k, mesh.triangles[k]);
+  }
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetPolys(cells);
+}
+
+vtkSmartPointer<vtkDataArray> MakeArray(
+  const char* name, int components, const std::vector<double>& values)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
+template <typename T>
+vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name, const std::vector<T>& values)
+{
+  vtkSmartPointer<vtkDataArray> array;
+  if constexpr (sizeof(T) == 1 && std::is_signed<T>::value)
+  {
+    array = vtkSmartPointer<vtkSignedCharArray>::New();
+  }
+  else if constexpr (sizeof(T) == 1)
+  {
+    array = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  }
+  else if constexpr (sizeof(T) == 4)
+  {
+    array = vtkSmartPointer<vtkIntArray>::New();
+  }
+  else
+  {
+    array = vtkSmartPointer<vtkIdTypeArray>::New();
+  }
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    array->SetTuple1(static_cast<vtkIdType>(i), static_cast<double>(values[i]));
+  }
+  return array;
+}
+
+template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<uint8_t>(
+  const char*, const std::vector<uint8_t>&);
+template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int8_t>(
+  const char*, const std::vector<int8_t>&);
+template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int32_t>(
+  const char*, const std::vector<int32_t>&);
+template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int64_t>(
+  const char*, const std::vector<int64_t>&);
+
+void SetTextField(vtkFieldData* fd, const char* name, const std::string& text)
+{
+  auto lines = vtkSmartPointer<vtkStringArray>::New();
+  lines->SetName(name);
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+  {
+    lines->InsertNextValue(line);
+  }
+  fd->RemoveArray(name);
+  fd->AddArray(lines);
+}
+
+std::string GetTextField(vtkFieldData* fd, const char* name)
+{
+  auto* lines = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  std::string text;
+  for (vtkIdType i = 0; lines && i < lines->GetNumberOfValues(); ++i)
+  {
+    text += lines->GetValue(i) + "\n";
+  }
+  return text;
+}
+
+tc::Progress MakeProgress(vtkAlgorithm* algorithm)
+{
+  return tc::Progress(
+    [algorithm](double fraction)
+    {
+      algorithm->UpdateProgress(fraction);
+      return algorithm->GetAbortExecute() == 0;
+    });
+}
+} // namespace tcvtk

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file tcMeshConversion.h
+ * @brief Conversions between vtkPolyData and the core's flat meshes, and the bridge from a
+ * vtkAlgorithm's progress/abort to tc::Progress. Every TriChart filter uses these, so no
+ * filter converts by hand.
+ */
+#ifndef tcMeshConversion_h
+#define tcMeshConversion_h
+
+#include "TriChartCommonModule.h"
+
+#include "tc/mesh.h"
+#include "tc/progress.h"
+
+#include <vtkSmartPointer.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkFieldData;
+class vtkPolyData;
+
+namespace tcvtk
+{
+/// Polygons and triangle strips of `input` as a polygon soup (strips become triangles).
+/// `polygonCell` receives, per soup polygon, the id of the vtkPolyData cell it came from.
+/// Vertices and lines are not surface elements and are counted in `ignoredCells`.
+TRICHARTCOMMON_EXPORT tc::PolygonSoup ToPolygonSoup(
+  vtkPolyData* input, std::vector<int64_t>& polygonCell, int64_t& ignoredCells);
+
+/// The triangles of `input`; returns false and says why in `error` when `input` has cells
+/// that are not triangles (the message tells the user to run tcMeshPreparation first).
+TRICHARTCOMMON_EXPORT bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error);
+
+/// Sets points (double precision) and triangles of `output` from a core mesh.
+TRICHARTCOMMON_EXPORT void FromTriMesh(const tc::TriMesh& mesh, vtkPolyData* output);
+
+/// Sets points and polygons of `output` from a polygon soup (ids are not validated here).
+TRICHARTCOMMON_EXPORT void FromPolygonSoup(const tc::PolygonSoup& soup, vtkPolyData* output);
+
+/// A new double array named `name` holding `values` (#tuples x components, interleaved).
+TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(
+  const char* name, int components, const std::vector<double>& values);
+
+/// A new integer array from `values`: (un)signed char for 1-byte T, int for 4, vtkIdType for 8.
+template <typename T>
+vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name, const std::vector<T>& values);
+
+/// Adds a string array `name` to `fd`, one line of `text` per value.
+TRICHARTCOMMON_EXPORT void SetTextField(vtkFieldData* fd, const char* name, const std::string& text);
+
+/// Reads back a text field written by SetTextField ("" when absent).
+TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);
+
+/// Progress of the core reported through `algorithm`'s UpdateProgress (ParaView's progress
+/// bar) and aborted when its AbortExecute flag is set.
+TRICHARTCOMMON_EXPORT tc::Progress MakeProgress(vtkAlgorithm* algorithm);
+} // namespace tcvtk
+
+#endif

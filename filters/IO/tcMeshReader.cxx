@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcMeshReader.h"
+
+#include "tcMeshConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/errors.h"
+#include "tc/off_io.h"
+
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkFieldData.h>
+#include <vtkGenericDataObjectReader.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkObjectFactory.h>
+#include <vtkPLYReader.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSTLReader.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+vtkStandardNewMacro(tcMeshReader);
+
+namespace
+{
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool EndsWith(const std::string& s, const std::string& suffix)
+{
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// The format key of a file name: "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk" or "".
+std::string FormatOf(const std::string& fileName)
+{
+  const std::string name = Lower(fileName);
+  for (const char* ext : { "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk" })
+  {
+    if (EndsWith(name, std::string(".") + ext))
+    {
+      return ext;
+    }
+  }
+  return std::string();
+}
+
+/// Inflates a whole gzip file into memory (vtkPLYReader reads from a string).
+bool Gunzip(const std::string& fileName, std::string& data, std::string& error)
+{
+  gzFile file = gzopen(fileName.c_str(), "rb");
+  if (!file)
+  {
+    error = "cannot open '" + fileName + "'";
+    return false;
+  }
+  char buffer[1 << 16];
+  int n = 0;
+  while ((n = gzread(file, buffer, sizeof(buffer))) > 0)
+  {
+    data.append(buffer, n);
+  }
+  int code = Z_OK;
+  const char* message = gzerror(file, &code);
+  const bool ok = n == 0 && code == Z_OK;
+  if (!ok)
+  {
+    error = "'" + fileName + "' is not a valid gzip file (" + message +
+      "); decompress it or re-export it";
+  }
+  gzclose(file);
+  return ok;
+}
+
+/// Observes a VTK reader's error events so that their text can be reported as ours.
+class ErrorCatcher : public vtkCommand
+{
+public:
+  static ErrorCatcher* New() { return new ErrorCatcher; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    if (callData && this->Text.empty())
+    {
+      this->Text = static_cast<const char*>(callData);
+    }
+  }
+  std::string Text;
+};
+}
+
+tcMeshReader::tcMeshReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+tcMeshReader::~tcMeshReader() = default;
+
+bool tcMeshReader::CanReadFile(const char* fileName)
+{
+  return fileName && !FormatOf(fileName).empty();
+}
+
+const char* tcMeshReader::GetSupportedExtensions()
+{
+  return "ply ply.gz obj stl off vtp vtk";
+}
+
+int tcMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // 1. Output.
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  this->Report.clear();
+
+  // 2. Validate: the file must exist and have an extension we know.
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("No file name set; call SetFileName with a mesh file.");
+    return 0;
+  }
+  if (!std::ifstream(this->FileName).good())
+  {
+    vtkErrorMacro("Cannot open '" << this->FileName << "': the file does not exist or is not readable.");
+    return 0;
+  }
+  const std::string format = FormatOf(this->FileName);
+  if (format.empty())
+  {
+    vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads ."
+                                  << "ply, .ply.gz, .obj, .stl, .off, .vtp and .vtk files.");
+    return 0;
+  }
+
+  // 3. Read with the reader of that format, catching its error messages.
+  vtkNew<ErrorCatcher> catcher;
+  vtkSmartPointer<vtkPolyData> mesh;
+  vtkSmartPointer<vtkAlgorithm> reader;
+  std::string error;
+  if (format == "off")
+  {
+    try
+    {
+      const tc::PolygonSoup soup = tc::readOFF(this->FileName);
+      mesh = vtkSmartPointer<vtkPolyData>::New();
+      tcvtk::FromPolygonSoup(soup, mesh);
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
+  }
+  else if (format == "ply" || format == "ply.gz")
+  {
+    vtkNew<vtkPLYReader> ply;
+    if (format == "ply.gz")
+    {
+      std::string data;
+      if (!Gunzip(this->FileName, data, error))
+      {
+        vtkErrorMacro(<< error);
+        return 0;
+      }
+      ply->ReadFromInputStringOn();
+      ply->SetInputString(data);
+    }
+    else
+    {
+      ply->SetFileName(this->FileName.c_str());
+    }
+    reader = ply;
+  }
+  else if (format == "obj")
+  {
+    vtkNew<vtkOBJReader> obj;
+    obj->SetFileName(this->FileName.c_str());
+    reader = obj;
+  }
+  else if (format == "stl")
+  {
+    vtkNew<vtkSTLReader> stl;
+    stl->SetFileName(this->FileName.c_str());
+    stl->MergingOff();
+    reader = stl;
+  }
+  else if (format == "vtp")
+  {
+    vtkNew<vtkXMLPolyDataReader> vtp;
+    vtp->SetFileName(this->FileName.c_str());
+    reader = vtp;
+  }
+  else
+  {
+    // Legacy VTK files may hold any dataset; non-polydata is reduced to its outer surface.
+    vtkNew<vtkGenericDataObjectReader> legacy;
+    legacy->SetFileName(this->FileName.c_str());
+    vtkNew<vtkDataSetSurfaceFilter> surface;
+    surface->SetInputConnection(legacy->GetOutputPort());
+    legacy->AddObserver(vtkCommand::ErrorEvent, catcher);
+    reader = surface;
+  }
+  if (reader)
+  {
+    reader->AddObserver(vtkCommand::ErrorEvent, catcher);
+    reader->Update();
+    mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+    if (!catcher->Text.empty())
+    {
+      error = catcher->Text;
+    }
+  }
+
+  // 4. A file without polygons is an error, whatever the reader said.
+  const vtkIdType polygons = mesh ? mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() : 0;
+  if (!error.empty() || polygons == 0)
+  {
+    if (error.empty())
+    {
+      error = "no polygons found";
+    }
+    vtkErrorMacro("Cannot read '" << this->FileName << "' as " << format << ": " << error
+                                  << ". Check that the file is a complete " << format
+                                  << " surface mesh.");
+    return 0;
+  }
+
+  // 5. Output and report.
+  output->ShallowCopy(mesh);
+  std::ostringstream report;
+  report << "read " << format << " file '" << this->FileName << "'\n"
+         << output->GetNumberOfPoints() << " points, " << output->GetNumberOfPolys()
+         << " polygons";
+  if (output->GetNumberOfStrips() > 0)
+  {
+    report << ", " << output->GetNumberOfStrips() << " triangle strips";
+  }
+  if (output->GetNumberOfLines() + output->GetNumberOfVerts() > 0)
+  {
+    report << ", " << output->GetNumberOfLines() + output->GetNumberOfVerts()
+           << " vertices/lines (not surface cells)";
+  }
+  report << "\n";
+  for (int i = 0; i < output->GetPointData()->GetNumberOfArrays(); ++i)
+  {
+    const char* name = output->GetPointData()->GetArrayName(i);
+    report << "point array " << (name ? name : "(unnamed)") << "\n";
+  }
+  for (int i = 0; i < output->GetCellData()->GetNumberOfArrays(); ++i)
+  {
+    const char* name = output->GetCellData()->GetArrayName(i);
+    report << "cell array " << (name ? name : "(unnamed)") << "\n";
+  }
+  this->Report = report.str();
+  tcvtk::SetTextField(output->GetFieldData(), tc::kReaderReport, this->Report);
+  return 1;
+}
+
+void tcMeshReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Report: " << this->Report << "\n";
+}

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcMeshPreparation.h"
+
+#include "tcMeshConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/mesh_preparation.h"
+
+#include <vtkCellData.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+vtkStandardNewMacro(tcMeshPreparation);
+
+tcMeshPreparation::tcMeshPreparation() = default;
+tcMeshPreparation::~tcMeshPreparation() = default;
+
+namespace
+{
+/// Copies the arrays of `in` to `out`, element i of `out` taking element ids[i] of `in`.
+void CopyArrays(vtkDataSetAttributes* in, vtkDataSetAttributes* out, const std::vector<int64_t>& ids)
+{
+  vtkNew<vtkIdList> from;
+  vtkNew<vtkIdList> to;
+  from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  to->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  for (size_t i = 0; i < ids.size(); ++i)
+  {
+    from->SetId(static_cast<vtkIdType>(i), ids[i]);
+    to->SetId(static_cast<vtkIdType>(i), static_cast<vtkIdType>(i));
+  }
+  out->CopyAllocate(in, static_cast<vtkIdType>(ids.size()));
+  out->CopyData(in, from, to);
+}
+}
+
+int tcMeshPreparation::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // 1. Input and output.
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  this->Report.clear();
+  this->Changed = false;
+
+  // 2. Validate: a surface needs polygons; the core checks everything else.
+  if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    vtkErrorMacro("The input has no polygons; give a surface mesh (polygons or triangle strips).");
+    return 0;
+  }
+
+  // 3. Convert.
+  int64_t ignored = 0;
+  std::vector<int64_t> polygonCell;
+  const tc::PolygonSoup soup = tcvtk::ToPolygonSoup(input, polygonCell, ignored);
+
+  // 4. Prepare, with progress and abort.
+  tc::PreparationOptions options;
+  options.mergeTolerance = this->MergeTolerance;
+  options.splitNonManifold = this->SplitNonManifold;
+  options.orient = this->Orient;
+  tc::PreparationResult result;
+  try
+  {
+    result = tc::prepareMesh(soup, options, tcvtk::MakeProgress(this));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot prepare the mesh: " << e.what());
+    return 0;
+  }
+
+  // 5. Output: the mesh, where each element came from, the flags, the input's arrays, the report.
+  tcvtk::FromTriMesh(result.mesh, output);
+  std::vector<int64_t> inputCells(result.inputCellId.size());
+  for (size_t f = 0; f < inputCells.size(); ++f)
+  {
+    inputCells[f] = polygonCell[result.inputCellId[f]];
+  }
+  CopyArrays(input->GetPointData(), output->GetPointData(), result.inputPointId);
+  CopyArrays(input->GetCellData(), output->GetCellData(), inputCells);
+  vtkPointData* pd = output->GetPointData();
+  vtkCellData* cd = output->GetCellData();
+  pd->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.inputPointId));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldVertex, result.nonManifoldVertex));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kBoundaryVertex, result.boundaryVertex));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, inputCells));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldEdge, result.nonManifoldEdge));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kComponentId, result.componentId));
+  output->GetFieldData()->PassData(input->GetFieldData());
+
+  this->Report = result.report.text();
+  if (ignored > 0)
+  {
+    this->Report += "ignored " + std::to_string(ignored) + " vertex and line cells\n";
+  }
+  this->Changed = result.report.changed() || ignored > 0;
+  tcvtk::SetTextField(output->GetFieldData(), tc::kPreparationReport, this->Report);
+  if (result.report.nonManifoldEdges + result.report.nonManifoldVertices > 0 &&
+    !this->SplitNonManifold)
+  {
+    vtkWarningMacro("The mesh has " << result.report.nonManifoldEdges << " non-manifold edges and "
+                                    << result.report.nonManifoldVertices
+                                    << " non-manifold vertices (flagged in " << tc::kNonManifoldEdge
+                                    << " / " << tc::kNonManifoldVertex
+                                    << "); turn on SplitNonManifold to split them.");
+  }
+  else if (this->Changed)
+  {
+    vtkLog(INFO, "tcMeshPreparation: " << this->Report);
+  }
+  return 1;
+}
+
+void tcMeshPreparation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MergeTolerance: " << this->MergeTolerance << "\n";
+  os << indent << "SplitNonManifold: " << this->SplitNonManifold << "\n";
+  os << indent << "Orient: " << this->Orient << "\n";
+  os << indent << "Report: " << this->Report << "\n";
+}

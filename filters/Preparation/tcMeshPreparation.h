@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class tcMeshPreparation
+ * @brief Turns any polygonal input into a clean triangle mesh for the later stages, and says
+ * what it changed.
+ *
+ * Triangulates polygons and strips, merges duplicate points (exactly or within a tolerance
+ * relative to the bounding-box diagonal), drops degenerate and repeated faces, orients every
+ * component consistently (closed components outward), drops unused points. Non-manifold edges
+ * and vertices are flagged (cell array NonManifoldEdge, point array NonManifoldVertex) and, with
+ * SplitNonManifold, split so that the output is manifold. Point and cell arrays of the input
+ * are carried over (InputPointId, InputCellId say where each element came from).
+ *
+ * What changed is in GetReport() and the field array "PreparationReport". Input that cannot be
+ * made into a mesh (no polygons, NaN or infinite coordinates, zero area) is an error that
+ * says what to fix.
+ */
+#ifndef tcMeshPreparation_h
+#define tcMeshPreparation_h
+
+#include "TriChartPreparationModule.h"
+
+#include <vtkPolyDataAlgorithm.h>
+
+#include <string>
+
+class TRICHARTPREPARATION_EXPORT tcMeshPreparation : public vtkPolyDataAlgorithm
+{
+public:
+  static tcMeshPreparation* New();
+  vtkTypeMacro(tcMeshPreparation, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Points closer than this fraction of the bounding-box diagonal are merged; 0 (default)
+  /// merges exact duplicates only.
+  vtkSetClampMacro(MergeTolerance, double, 0.0, 0.1);
+  vtkGetMacro(MergeTolerance, double);
+  ///@}
+
+  ///@{
+  /// Split non-manifold edges and vertices so that the output is a manifold (default off:
+  /// they are only flagged).
+  vtkSetMacro(SplitNonManifold, bool);
+  vtkGetMacro(SplitNonManifold, bool);
+  vtkBooleanMacro(SplitNonManifold, bool);
+  ///@}
+
+  ///@{
+  /// Orient the faces of every component consistently, closed components outward (default on).
+  vtkSetMacro(Orient, bool);
+  vtkGetMacro(Orient, bool);
+  vtkBooleanMacro(Orient, bool);
+  ///@}
+
+  /// What the last run changed, one item per line.
+  const char* GetReport() const { return this->Report.c_str(); }
+
+  /// True if the last run altered geometry or connectivity.
+  bool GetChanged() const { return this->Changed; }
+
+protected:
+  tcMeshPreparation();
+  ~tcMeshPreparation() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  tcMeshPreparation(const tcMeshPreparation&) = delete;
+  void operator=(const tcMeshPreparation&) = delete;
+
+  double MergeTolerance = 0.0;
+  bool SplitNonManifold = false;
+  bool Orient = true;
+  std::string Report;
+  bool Changed = false;
+};
+
+#endif

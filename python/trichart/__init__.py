@@ -1,0 +1,29 @@
+"""TriChart: feature-preserving triangle-chart geometry images and level of detail for VTK.
+
+The filters are VTK algorithms (tcMeshReader, tcMeshPreparation, tcCurvature, ...); the
+helpers in :mod:`trichart.pipeline` chain them, :mod:`trichart.render` draws a stage, and
+``python3 -m trichart`` (the ``trichart`` command) runs them from the shell.
+"""
+import os as _os
+
+# The wrapped modules link to the same VTK libraries as vtkmodules; import it first.
+import vtkmodules.vtkCommonCore  # noqa: F401
+import vtkmodules.vtkCommonExecutionModel  # noqa: F401
+
+from .TriChartIO import *  # noqa: F401,F403
+from .TriChartPreparation import *  # noqa: F401,F403
+from .TriChartCurvature import *  # noqa: F401,F403
+
+try:
+    from . import _config_build as _config  # running from a build tree
+except ImportError:
+    from . import _config
+
+__version__ = _config.VERSION
+
+from .pipeline import read_mesh, prepare, curvature, build  # noqa: E402,F401
+
+
+def plugin_path():
+    """Path of the ParaView plugin that matches this package ('' when it was not built)."""
+    return _config.PLUGIN_PATH if _os.path.exists(_config.PLUGIN_PATH) else ""

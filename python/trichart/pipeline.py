@@ -1,0 +1,139 @@
+"""Chain the TriChart filters from Python, with errors as exceptions and progress callbacks."""
+import os
+import tempfile
+
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+from . import TriChartCurvature, TriChartIO, TriChartPreparation
+
+
+class TriChartError(RuntimeError):
+    """A TriChart stage refused its input; the message says what to fix."""
+
+
+def run(algorithm, label="", progress=None):
+    """Update `algorithm`; raise TriChartError with its error message if it fails.
+
+    progress(label, fraction) is called as the algorithm reports progress; returning False
+    from it (or pressing Ctrl-C) aborts the stage.
+    """
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(_obj, _event, text):
+        errors.append(text.strip())
+
+    def on_progress(obj, _event):
+        try:
+            if progress is not None and progress(label, obj.GetProgress()) is False:
+                obj.AbortExecuteOn()
+        except KeyboardInterrupt:
+            obj.AbortExecuteOn()
+            errors.append("interrupted")
+
+    error_tag = algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
+    progress_tag = algorithm.AddObserver(vtkCommand.ProgressEvent, on_progress)
+    try:
+        algorithm.Update()
+    finally:
+        algorithm.RemoveObserver(error_tag)
+        algorithm.RemoveObserver(progress_tag)
+    if algorithm.GetAbortExecute():
+        algorithm.AbortExecuteOff()
+        algorithm.Modified()
+        raise KeyboardInterrupt(f"{label or algorithm.GetClassName()} aborted")
+    if errors:
+        # Keep the part after VTK's "ERROR: In file, line N / class (address):" preamble.
+        message = errors[0].split("\n", 1)[-1].strip()
+        raise TriChartError(f"{label or algorithm.GetClassName()}: {message}")
+    return algorithm
+
+
+def _output(algorithm, port=0):
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+
+    copy = vtkPolyData()
+    copy.ShallowCopy(algorithm.GetOutputDataObject(port))
+    return copy
+
+
+def read_mesh(path, progress=None):
+    """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk) into a vtkPolyData."""
+    reader = TriChartIO.tcMeshReader()
+    reader.SetFileName(str(path))
+    run(reader, "read", progress)
+    return _output(reader)
+
+
+def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, progress=None):
+    """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
+    f = TriChartPreparation.tcMeshPreparation()
+    f.SetInputData(mesh)
+    f.SetMergeTolerance(merge_tolerance)
+    f.SetSplitNonManifold(split_non_manifold)
+    f.SetOrient(orient)
+    run(f, "prepare", progress)
+    return _output(f), f.GetReport()
+
+
+def curvature(mesh, progress=None, **options):
+    """tcCurvature on a triangle mesh; returns (mesh with curvature arrays, crest lines).
+
+    Options are the filter's properties in snake case: min_neighbors, max_rings, degree,
+    robust, robust_iterations, compute_crest_lines, crest_strength_threshold.
+    """
+    f = TriChartCurvature.tcCurvature()
+    f.SetInputData(mesh)
+    for name, value in options.items():
+        setter = "Set" + "".join(part.capitalize() for part in name.split("_"))
+        if not hasattr(f, setter):
+            raise TypeError(f"tcCurvature has no option '{name}'")
+        getattr(f, setter)(value)
+    run(f, "curvature", progress)
+    return _output(f, 0), _output(f, 1)
+
+
+def write_vtp(mesh, path):
+    """Write `mesh` as VTP; the file appears only when complete (temporary file, then rename)."""
+    path = os.path.abspath(str(path))
+    folder = os.path.dirname(path)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".vtp", dir=folder)
+    os.close(fd)
+    try:
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(tmp)
+        writer.SetInputData(mesh)
+        writer.SetDataModeToBinary()
+        if writer.Write() != 1:
+            raise TriChartError(f"cannot write '{path}' (disk full or not writable?)")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return path
+
+
+def build(path, outdir, progress=None, image=True, **curvature_options):
+    """The main job, as far as the pipeline goes today: read, prepare, curvature.
+
+    Writes prepared.vtp, curvature.vtp, crest_lines.vtp and (with image=True) curvature.png
+    into `outdir`; returns a dict with the outputs, the written paths and the report.
+    """
+    os.makedirs(outdir, exist_ok=True)
+    mesh = read_mesh(path, progress)
+    clean, report = prepare(mesh, progress=progress)
+    surface, crest = curvature(clean, progress=progress, **curvature_options)
+    files = {
+        "prepared": write_vtp(clean, os.path.join(outdir, "prepared.vtp")),
+        "curvature": write_vtp(surface, os.path.join(outdir, "curvature.vtp")),
+        "crest_lines": write_vtp(crest, os.path.join(outdir, "crest_lines.vtp")),
+    }
+    if image:
+        from .render import render_curvature
+
+        files["image"] = render_curvature(surface, crest, os.path.join(outdir, "curvature.png"))
+    return {"mesh": clean, "surface": surface, "crest_lines": crest, "files": files,
+            "report": report}

@@ -1,0 +1,107 @@
+"""Offscreen pictures of TriChart stages (used by the CLI and the tests)."""
+import os
+import tempfile
+
+from vtkmodules.vtkCommonCore import vtkLookupTable
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
+                                         vtkRenderWindow, vtkWindowToImageFilter)
+import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text of the scalar bar)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
+
+
+def symmetric_range(array, fraction=0.95):
+    """A colour range symmetric about 0 that holds `fraction` of the values of `array`."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    values = numpy.abs(vtk_to_numpy(array)).ravel()
+    values = values[numpy.isfinite(values)]
+    limit = float(numpy.quantile(values, fraction)) if values.size else 0.0
+    limit = limit if limit > 0.0 else 1.0
+    return (-limit, limit)
+
+
+def diverging_lut(lo, hi):
+    """Blue (concave) - white - red (convex)."""
+    lut = vtkLookupTable()
+    lut.SetNumberOfTableValues(256)
+    lut.SetTableRange(lo, hi)
+    for i in range(256):
+        t = i / 255.0
+        if t < 0.5:
+            s = t / 0.5
+            lut.SetTableValue(i, 0.23 + 0.77 * s, 0.30 + 0.70 * s, 0.75 + 0.25 * s, 1.0)
+        else:
+            s = (t - 0.5) / 0.5
+            lut.SetTableValue(i, 1.0 - 0.29 * s, 1.0 - 0.98 * s, 1.0 - 0.85 * s, 1.0)
+    lut.Build()
+    return lut
+
+
+def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600)):
+    """A render window with `surface` coloured by `array`, crest lines on top, and a legend."""
+    lo, hi = symmetric_range(surface.GetPointData().GetArray(array))
+    lut = diverging_lut(lo, hi)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(surface)
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray(array)
+    mapper.SetLookupTable(lut)
+    mapper.UseLookupTableScalarRangeOn()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer.AddActor(actor)
+    if crest is not None and crest.GetNumberOfCells() > 0:
+        crest_mapper = vtkPolyDataMapper()
+        crest_mapper.SetInputData(crest)
+        crest_mapper.ScalarVisibilityOff()
+        crest_mapper.SetResolveCoincidentTopologyToPolygonOffset()
+        crest_actor = vtkActor()
+        crest_actor.SetMapper(crest_mapper)
+        crest_actor.GetProperty().SetColor(0.1, 0.1, 0.1)
+        crest_actor.GetProperty().SetLineWidth(2.0)
+        renderer.AddActor(crest_actor)
+    bar = vtkScalarBarActor()
+    bar.SetLookupTable(lut)
+    bar.SetTitle(array)
+    bar.SetNumberOfLabels(5)
+    bar.SetWidth(0.1)
+    bar.SetHeight(0.6)
+    renderer.AddActor2D(bar)
+    renderer.ResetCamera()
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*size)
+    window.AddRenderer(renderer)
+    return window
+
+
+def write_png(window, path):
+    """Render `window` and save it as PNG (temporary file, then rename)."""
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    path = os.path.abspath(path)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".png", dir=os.path.dirname(path))
+    os.close(fd)
+    try:
+        writer = vtkPNGWriter()
+        writer.SetFileName(tmp)
+        writer.SetInputConnection(grab.GetOutputPort())
+        writer.Write()
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return path
+
+
+def render_curvature(surface, crest, path, array="MeanCurvature"):
+    """Save a picture of the curvature stage to `path`."""
+    return write_png(curvature_scene(surface, crest, array), path)

@@ -1,0 +1,50 @@
+"""pvpython: the TriChart plugin loads, every proxy exists with its documented properties,
+and reader -> preparation -> curvature runs with the expected arrays and counts."""
+import os
+import sys
+
+from paraview import servermanager
+from paraview.simple import LoadPlugin, UpdatePipeline
+
+plugin = os.environ["TRICHART_PLUGIN"]
+data = os.environ["TRICHART_TESTING_DATA"]
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAILED:", what)
+
+
+LoadPlugin(plugin, remote=False, ns=globals())
+# paraview.simple names the functions after the proxies' labels.
+for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature"):
+    check(name in globals(), f"proxy {name} is created by the plugin")
+if failures:
+    sys.exit(1)
+
+reader = TriChartMeshReader(FileName=os.path.join(data, "meshes", "fandisk.off"))  # noqa: F821
+prep = TriChartMeshPreparation(Input=reader)  # noqa: F821
+check(prep.GetXMLName() == "tcMeshPreparation", "proxy name is the class name")
+check(prep.MergeTolerance == 0.0 and prep.Orient == 1 and prep.SplitNonManifold == 0,
+      "tcMeshPreparation defaults match the C++ defaults")
+curv = TriChartCurvature(Input=prep)  # noqa: F821
+check(curv.MinNeighbors == 20 and curv.Degree == 3 and curv.ComputeCrestLines == 1,
+      "tcCurvature defaults match the C++ defaults")
+UpdatePipeline(proxy=curv)
+surface = servermanager.Fetch(curv)
+check(surface.GetNumberOfPoints() == 6475, "fandisk has 6475 points after preparation")
+check(surface.GetNumberOfPolys() == 12946, "fandisk has 12946 triangles after preparation")
+for array in ("PrincipalCurvatures", "PrincipalDirections", "MeanCurvature", "GaussianCurvature"):
+    check(surface.GetPointData().GetArray(array) is not None, f"point array {array}")
+check(surface.GetCellData().GetArray("FaceMeanCurvature") is not None, "cell FaceMeanCurvature")
+info = curv.GetDataInformation(1)
+check(info.GetNumberOfCells() > 0, "crest lines on output port 1")
+
+curv.Degree = 2
+UpdatePipeline(proxy=curv)
+check(curv.GetDataInformation(0).GetNumberOfPoints() == 6475, "re-runs with a new property")
+
+print("paraview plugin test:", "FAILED" if failures else "passed")
+sys.exit(1 if failures else 0)

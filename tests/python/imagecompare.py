@@ -1,0 +1,40 @@
+"""Compare a PNG with its baseline in testing-data/baselines, the way VTK's regression tests
+do (vtkImageDifference). A missing or differing baseline leaves the candidate and the
+difference image in the temporary folder, so that a new baseline can be reviewed and copied."""
+import os
+import shutil
+
+from vtkmodules.vtkImagingCore import vtkImageDifference  # noqa: F401
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+
+
+def compare_with_baseline(candidate, baseline, threshold=0.05):
+    """Return (ok, error). `error` is vtkImageDifference's thresholded error per pixel."""
+    temp = os.environ.get("TRICHART_TEMP", os.path.dirname(str(candidate)))
+    os.makedirs(temp, exist_ok=True)
+    keep = os.path.join(temp, os.path.basename(str(baseline)))
+    if not os.path.exists(baseline):
+        shutil.copyfile(candidate, keep)
+        return False, f"no baseline {baseline}; candidate written to {keep}"
+    readers = []
+    for path in (candidate, baseline):
+        r = vtkPNGReader()
+        r.SetFileName(str(path))
+        r.Update()
+        readers.append(r)
+    if readers[0].GetOutput().GetDimensions() != readers[1].GetOutput().GetDimensions():
+        shutil.copyfile(candidate, keep)
+        return False, f"size differs from {baseline}; candidate written to {keep}"
+    diff = vtkImageDifference()
+    diff.SetInputConnection(readers[0].GetOutputPort())
+    diff.SetImageConnection(readers[1].GetOutputPort())
+    diff.Update()
+    error = diff.GetThresholdedError()
+    if error > threshold:
+        shutil.copyfile(candidate, keep)
+        w = vtkPNGWriter()
+        w.SetFileName(keep.replace(".png", ".diff.png"))
+        w.SetInputConnection(diff.GetOutputPort())
+        w.Write()
+        return False, f"differs from {baseline} by {error:.4f} > {threshold}; see {keep}"
+    return True, error

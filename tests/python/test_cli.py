@@ -1,0 +1,60 @@
+"""The `trichart` command line (python3 -m trichart)."""
+import os
+import subprocess
+import sys
+
+import pytest
+
+
+def run(*args, **kwargs):
+    return subprocess.run([sys.executable, "-m", "trichart", *map(str, args)],
+                          capture_output=True, text=True, timeout=300, **kwargs)
+
+
+def test_info_prints_versions_and_plugin():
+    r = run("info")
+    assert r.returncode == 0, r.stderr
+    assert "TriChart" in r.stdout and "VTK 9." in r.stdout
+    assert "build)" in r.stdout and "ParaView plugin" in r.stdout
+
+
+def test_build_writes_stages_and_a_picture(testing_data, tmp_path):
+    r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", tmp_path)
+    assert r.returncode == 0, r.stderr
+    for name in ("prepared.vtp", "curvature.vtp", "crest_lines.vtp", "curvature.png"):
+        assert (tmp_path / name).stat().st_size > 0, name
+    assert "3674 triangles" in r.stdout
+    with open(tmp_path / "curvature.png", "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_build_shows_progress(testing_data, tmp_path):
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image")
+    assert r.returncode == 0, r.stderr
+    assert "curvature: 100%" in r.stderr
+
+
+@pytest.mark.parametrize("content,message", [
+    (None, "does not exist"),
+    ("", "bad.off"),
+    ("OFF\n3 1 0\n0 0 0\n1 0 0\n", "line"),
+])
+def test_bad_files_fail_with_a_message_and_write_nothing(tmp_path, content, message):
+    mesh = tmp_path / "bad.off"
+    if content is not None:
+        mesh.write_text(content)
+    out = tmp_path / "out"
+    r = run("build", mesh, "-o", out, "--no-image")
+    assert r.returncode == 2
+    assert "trichart: error:" in r.stderr and message in r.stderr
+    assert not (out / "prepared.vtp").exists()
+
+
+def test_prepare_reports_and_splits(tmp_path):
+    mesh = tmp_path / "fins.off"
+    # Three triangles on the edge (0, 1): a non-manifold edge.
+    mesh.write_text("OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n")
+    r = run("prepare", mesh, "-o", tmp_path / "fins.vtp", "--split-non-manifold")
+    assert r.returncode == 0, r.stderr
+    assert "non-manifold" in r.stdout
+    assert (tmp_path / "fins.vtp").exists()

@@ -1,0 +1,72 @@
+"""The `trichart` package from Python: wrapped filters, pipeline helpers, errors, progress."""
+import math
+
+import pytest
+
+import trichart
+from trichart.pipeline import TriChartError
+
+
+def test_filters_are_wrapped():
+    for name in ("tcMeshReader", "tcMeshPreparation", "tcCurvature"):
+        assert hasattr(trichart, name), name
+    assert trichart.tcCurvature().GetNumberOfOutputPorts() == 2
+
+
+def test_read_prepare_curvature_on_the_bunny(testing_data):
+    mesh = trichart.read_mesh(testing_data / "meshes" / "bunny_npm.off")
+    assert (mesh.GetNumberOfPoints(), mesh.GetNumberOfPolys()) == (1839, 3674)
+    clean, report = trichart.prepare(mesh)
+    assert clean.GetNumberOfPolys() == 3674
+    surface, crest = trichart.curvature(clean)
+    k = surface.GetPointData().GetArray("PrincipalCurvatures")
+    assert k.GetNumberOfComponents() == 2
+    assert all(k.GetComponent(i, 0) >= k.GetComponent(i, 1) for i in range(k.GetNumberOfTuples()))
+    assert all(math.isfinite(k.GetComponent(i, 0)) for i in range(k.GetNumberOfTuples()))
+    assert crest.GetNumberOfLines() > 0
+
+
+def test_curvature_options_reach_the_filter(testing_data):
+    clean, _ = trichart.prepare(trichart.read_mesh(testing_data / "meshes" / "bunny_npm.off"))
+    _, no_lines = trichart.curvature(clean, compute_crest_lines=False)
+    assert no_lines.GetNumberOfLines() == 0
+    with pytest.raises(TypeError):
+        trichart.curvature(clean, no_such_option=1)
+
+
+def test_progress_is_reported_and_can_abort(testing_data):
+    clean, _ = trichart.prepare(trichart.read_mesh(testing_data / "meshes" / "fandisk.off"))
+    seen = []
+    trichart.curvature(clean, progress=lambda label, f: seen.append((label, f)))
+    assert seen and seen[-1][1] == pytest.approx(1.0)
+    assert all(label == "curvature" for label, _ in seen)
+    with pytest.raises(KeyboardInterrupt):
+        trichart.curvature(clean, progress=lambda label, f: f < 0.3)
+
+
+def test_missing_and_unknown_files_raise_clear_errors(tmp_path):
+    with pytest.raises(TriChartError, match="does not exist"):
+        trichart.read_mesh(tmp_path / "nothing.off")
+    (tmp_path / "mesh.xyz").write_text("0 0 0\n")
+    with pytest.raises(TriChartError, match="unknown extension"):
+        trichart.read_mesh(tmp_path / "mesh.xyz")
+
+
+def test_non_triangles_are_refused_by_curvature(tmp_path):
+    (tmp_path / "quad.off").write_text("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
+    mesh = trichart.read_mesh(tmp_path / "quad.off")
+    with pytest.raises(TriChartError, match="tcMeshPreparation"):
+        trichart.curvature(mesh)
+
+
+def test_build_writes_every_stage(testing_data, tmp_path):
+    result = trichart.build(testing_data / "meshes" / "cube.off", tmp_path / "out", image=False)
+    for name in ("prepared", "curvature", "crest_lines"):
+        assert (tmp_path / "out" / f"{name}.vtp").stat().st_size > 0
+    assert result["surface"].GetNumberOfPolys() == 12
+    assert not list((tmp_path / "out").glob(".tmp-*"))
+
+
+def test_plugin_path_points_at_a_file():
+    path = trichart.plugin_path()
+    assert path == "" or path.endswith(".so")

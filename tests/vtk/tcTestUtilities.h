@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file tcTestUtilities.h
+/// Helpers of the VTK tests: where the data is, checks that print what failed, and the
+/// standard curvature scene used by the image tests.
+#ifndef tcTestUtilities_h
+#define tcTestUtilities_h
+
+#include <vtkSmartPointer.h>
+
+#include <iostream>
+#include <string>
+
+class vtkPolyData;
+class vtkRenderWindow;
+
+namespace tctest
+{
+/// The value after `flag` in argv ("" if absent): -D testing data, -S shared data, -T temp.
+std::string Arg(int argc, char* argv[], const char* flag);
+
+/// Path of a file under the shared data folder, or "" when it is absent (then skip: return 77).
+std::string SharedFile(int argc, char* argv[], const std::string& relative);
+
+/// Reads a mesh with tcMeshReader; nullptr (with the error printed) on failure.
+vtkSmartPointer<vtkPolyData> Read(const std::string& path);
+
+/// Reads and prepares (tcMeshPreparation with defaults).
+vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path);
+
+/// A 400x400 offscreen window showing `surface` coloured by point array `array` with a
+/// diverging colour map symmetric about 0, and `lines` (if any) drawn in black on top.
+vtkSmartPointer<vtkRenderWindow> CurvatureScene(
+  vtkPolyData* surface, const char* array, vtkPolyData* lines);
+
+/// Compares the window with the baseline given by -V; true when it matches.
+bool MatchesBaseline(int argc, char* argv[], vtkRenderWindow* window, double threshold = 0.05);
+
+/// Counts failed checks and prints each with its location.
+struct Checker
+{
+  int failures = 0;
+  bool operator()(bool ok, const char* what, const char* file, int line)
+  {
+    if (!ok)
+    {
+      std::cerr << file << ":" << line << ": check failed: " << what << "\n";
+      ++this->failures;
+    }
+    return ok;
+  }
+};
+} // namespace tctest
+
+#define TC_CHECK(checker, condition) checker((condition), #condition, __FILE__, __LINE__)
+
+#endif
