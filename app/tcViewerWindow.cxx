@@ -460,7 +460,9 @@ bool tcViewerWindow::ShowStage(int stage)
                                            : "";
   if (report && *report)
   {
-    info += "<br><pre>" + QString(report).toHtmlEscaped() + "</pre>";
+    // The folder is noise in a narrow panel; the file name says which file it is.
+    QString text = QString(report).replace(this->FileName, QFileInfo(this->FileName).fileName());
+    info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
   }
   if (lines)
   {

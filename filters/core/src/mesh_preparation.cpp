@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 // Written by hand rather than with CGAL's repair_polygon_soup / orient_polygon_soup: those do
 // not say which element they changed and always split non-manifold vertices, while this stage
@@ -97,6 +98,61 @@ public:
 
 private:
   std::vector<int32_t> Parent;
+};
+
+/// Union-find that also keeps whether each element is flipped relative to its root (the
+/// lowest element of its set): the orientation of faces within a patch.
+class ParitySets
+{
+public:
+  explicit ParitySets(int64_t n)
+    : Parent(n)
+    , Parity(n, 0)
+  {
+    std::iota(Parent.begin(), Parent.end(), 0);
+  }
+
+  /// Root of x and the parity of x relative to it.
+  std::pair<int32_t, uint8_t> find(int32_t x)
+  {
+    int32_t root = x;
+    uint8_t parity = 0;
+    while (Parent[root] != root)
+    {
+      parity ^= Parity[root];
+      root = Parent[root];
+    }
+    for (uint8_t p = parity; Parent[x] != x;)
+    {
+      const int32_t next = Parent[x];
+      const uint8_t step = Parity[x];
+      Parent[x] = root;
+      Parity[x] = p;
+      p ^= step;
+      x = next;
+    }
+    return { root, parity };
+  }
+
+  /// Records that a and b differ by `parity`; false if that contradicts what is known.
+  bool unite(int32_t a, int32_t b, uint8_t parity)
+  {
+    const auto [ra, pa] = find(a);
+    const auto [rb, pb] = find(b);
+    if (ra == rb)
+    {
+      return (pa ^ pb) == parity;
+    }
+    const int32_t low = std::min(ra, rb);
+    const int32_t high = std::max(ra, rb);
+    Parent[high] = low;
+    Parity[high] = static_cast<uint8_t>(pa ^ pb ^ parity);
+    return true;
+  }
+
+private:
+  std::vector<int32_t> Parent;
+  std::vector<uint8_t> Parity;
 };
 
 std::string plural(int64_t n, const char* singular, const char* many)
@@ -739,46 +795,47 @@ int32_t splitNonManifold(
 }
 
 /// Components (across every shared edge) and orientation patches (across edges with exactly
-/// 2 faces), both grown from their lowest face. Within a patch the first face keeps its
+/// 2 faces), numbered from their lowest face. Within a patch that lowest face keeps its
 /// orientation; a patch where two paths disagree cannot be oriented and is left as it is.
 /// A closed, oriented component then faces outward when its signed volume is positive.
+/// Union-find over the edges in order rather than a breadth-first search over faces: it visits
+/// memory in order, and gives the same result (the orientation of an orientable patch relative
+/// to its first face is unique).
 void orientComponents(
   const double* points, bool orient, const EdgeTable& edges, PreparationResult& result)
 {
   PreparationReport& report = result.report;
   std::vector<int32_t>& tri = result.mesh.triangles;
   const int64_t nf = static_cast<int64_t>(tri.size() / 3);
-  result.componentId.assign(nf, -1);
-  std::vector<int32_t> queue;
-  queue.reserve(nf);
-  int32_t numComponents = 0;
-  for (int32_t seed = 0; seed < nf; ++seed)
+  DisjointSets connected(nf);
+  ParitySets patches(nf);
+  std::vector<int32_t> conflicts;
+  for (int32_t e = 0; e < edges.numEdges(); ++e)
   {
-    if (result.componentId[seed] >= 0)
+    const int64_t valence = edges.valence(e);
+    const int32_t* faces = edges.edgeFaces.data() + edges.faceOffsets[e];
+    for (int64_t k = 1; k < valence; ++k)
     {
-      continue;
+      connected.unite(faces[0], faces[k]);
     }
-    queue.clear();
-    queue.push_back(seed);
-    result.componentId[seed] = numComponents;
-    for (size_t k = 0; k < queue.size(); ++k)
+    if (valence == 2 &&
+      !patches.unite(
+        faces[0], faces[1], consistentAcross(tri, edges, e, faces[0], faces[1]) ? 0 : 1))
     {
-      const int32_t f = queue[k];
-      for (int i = 0; i < 3; ++i)
-      {
-        const int32_t e = edges.faceEdges[3 * f + i];
-        for (int64_t j = edges.faceOffsets[e]; j < edges.faceOffsets[e + 1]; ++j)
-        {
-          const int32_t g = edges.edgeFaces[j];
-          if (result.componentId[g] < 0)
-          {
-            result.componentId[g] = numComponents;
-            queue.push_back(g);
-          }
-        }
-      }
+      conflicts.push_back(faces[0]);
     }
-    ++numComponents;
+  }
+  // Roots are lowest faces, so numbering roots in face order numbers components by first face.
+  result.componentId.assign(nf, -1);
+  int32_t numComponents = 0;
+  for (int32_t f = 0; f < nf; ++f)
+  {
+    const int32_t root = connected.find(f);
+    if (result.componentId[root] < 0)
+    {
+      result.componentId[root] = numComponents++;
+    }
+    result.componentId[f] = result.componentId[root];
   }
   report.components = numComponents;
   std::vector<uint8_t> closed(numComponents, 1);
@@ -789,50 +846,23 @@ void orientComponents(
       closed[result.componentId[edges.edgeFaces[edges.faceOffsets[e]]]] = 0;
     }
   }
-  std::vector<uint8_t> nonOrientable(numComponents, 0);
-  std::vector<int8_t> flip(nf, -1);
-  for (int32_t seed = 0; seed < nf; ++seed)
+  std::vector<uint8_t> unorientablePatch(nf, 0);
+  for (const int32_t f : conflicts)
   {
-    if (flip[seed] >= 0)
+    unorientablePatch[patches.find(f).first] = 1;
+  }
+  std::vector<uint8_t> nonOrientable(numComponents, 0);
+  std::vector<uint8_t> flip(nf, 0);
+  for (int32_t f = 0; f < nf; ++f)
+  {
+    const auto [root, parity] = patches.find(f);
+    if (unorientablePatch[root])
     {
-      continue;
+      nonOrientable[result.componentId[f]] = 1;
     }
-    queue.clear();
-    queue.push_back(seed);
-    flip[seed] = 0;
-    bool conflict = false;
-    for (size_t k = 0; k < queue.size(); ++k)
+    else
     {
-      const int32_t f = queue[k];
-      for (int i = 0; i < 3; ++i)
-      {
-        const int32_t e = edges.faceEdges[3 * f + i];
-        if (edges.valence(e) != 2)
-        {
-          continue;
-        }
-        const int64_t at = edges.faceOffsets[e];
-        const int32_t g = edges.edgeFaces[at] == f ? edges.edgeFaces[at + 1] : edges.edgeFaces[at];
-        const int8_t wanted =
-          static_cast<int8_t>(flip[f] ^ (consistentAcross(tri, edges, e, f, g) ? 0 : 1));
-        if (flip[g] < 0)
-        {
-          flip[g] = wanted;
-          queue.push_back(g);
-        }
-        else if (flip[g] != wanted)
-        {
-          conflict = true;
-        }
-      }
-    }
-    if (conflict)
-    {
-      nonOrientable[result.componentId[seed]] = 1;
-      for (const int32_t f : queue)
-      {
-        flip[f] = 0;
-      }
+      flip[f] = parity;
     }
   }
   // A closed, oriented component faces outward when its signed volume (sum over faces of
