@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcMeshConversion.h"
 
+#include "tc/array_names.h"
+
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSignedCharArray.h>
@@ -16,6 +20,7 @@
 
 #include <type_traits>
 
+#include <cmath>
 #include <sstream>
 
 namespace tcvtk
@@ -154,6 +159,40 @@ void FromTriMesh(const tc::TriMesh& mesh, vtkPolyData* output)
   output->SetPolys(cells);
 }
 
+void FromVertexPaths(const tc::TriMesh& mesh, const std::vector<int64_t>& offsets,
+  const std::vector<int32_t>& ids, vtkPolyData* output, bool asVertices)
+{
+  std::vector<int64_t> local(mesh.numPoints(), -1);
+  std::vector<int64_t> inputIds;
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  for (size_t k = 0; k + 1 < offsets.size(); ++k)
+  {
+    cells->InsertNextCell(static_cast<vtkIdType>(offsets[k + 1] - offsets[k]));
+    for (int64_t i = offsets[k]; i < offsets[k + 1]; ++i)
+    {
+      const int32_t v = ids[i];
+      if (local[v] < 0)
+      {
+        local[v] = points->InsertNextPoint(&mesh.points[3 * static_cast<size_t>(v)]);
+        inputIds.push_back(v);
+      }
+      cells->InsertCellPoint(local[v]);
+    }
+  }
+  output->SetPoints(points);
+  if (asVertices)
+  {
+    output->SetVerts(cells);
+  }
+  else
+  {
+    output->SetLines(cells);
+  }
+  output->GetPointData()->AddArray(MakeIntArray(tc::kInputPointId, inputIds));
+}
+
 vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, int components, const std::vector<double>& values)
 {
@@ -202,6 +241,70 @@ template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int32_
   const char*, const std::vector<int32_t>&);
 template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int64_t>(
   const char*, const std::vector<int64_t>&);
+
+namespace
+{
+vtkDataArray* FindArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  int components, std::string& error)
+{
+  vtkDataArray* array = attributes ? attributes->GetArray(name) : nullptr;
+  if (!array)
+  {
+    error = std::string("the input has no array '") + name + "'";
+    return nullptr;
+  }
+  if (array->GetNumberOfTuples() != tuples || array->GetNumberOfComponents() != components)
+  {
+    error = std::string("the array '") + name + "' has " +
+      std::to_string(array->GetNumberOfTuples()) + " x " +
+      std::to_string(array->GetNumberOfComponents()) + " values, expected " +
+      std::to_string(tuples) + " x " + std::to_string(components);
+    return nullptr;
+  }
+  return array;
+}
+}
+
+bool ReadArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  int components, std::vector<double>& values, std::string& error)
+{
+  vtkDataArray* array = FindArray(attributes, name, tuples, components, error);
+  if (!array)
+  {
+    return false;
+  }
+  values.resize(static_cast<size_t>(tuples) * components);
+  for (vtkIdType i = 0; i < tuples; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      values[static_cast<size_t>(i) * components + c] = array->GetComponent(i, c);
+    }
+  }
+  return true;
+}
+
+template <typename T>
+bool ReadIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  std::vector<T>& values, std::string& error)
+{
+  vtkDataArray* array = FindArray(attributes, name, tuples, 1, error);
+  if (!array)
+  {
+    return false;
+  }
+  values.resize(static_cast<size_t>(tuples));
+  for (vtkIdType i = 0; i < tuples; ++i)
+  {
+    values[static_cast<size_t>(i)] = static_cast<T>(std::llround(array->GetComponent(i, 0)));
+  }
+  return true;
+}
+
+template TRICHARTCOMMON_EXPORT bool ReadIntArray<uint8_t>(
+  vtkDataSetAttributes*, const char*, vtkIdType, std::vector<uint8_t>&, std::string&);
+template TRICHARTCOMMON_EXPORT bool ReadIntArray<int32_t>(
+  vtkDataSetAttributes*, const char*, vtkIdType, std::vector<int32_t>&, std::string&);
 
 void SetTextField(vtkFieldData* fd, const char* name, const std::string& text)
 {

@@ -14,6 +14,7 @@
 #include "tc/progress.h"
 
 #include <vtkSmartPointer.h>
+#include <vtkType.h>
 
 #include <cstdint>
 #include <string>
@@ -21,6 +22,7 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkDataSetAttributes;
 class vtkFieldData;
 class vtkPolyData;
 
@@ -42,6 +44,13 @@ TRICHARTCOMMON_EXPORT void FromTriMesh(const tc::TriMesh& mesh, vtkPolyData* out
 /// Sets points and polygons of `output` from a polygon soup (ids are not validated here).
 TRICHARTCOMMON_EXPORT void FromPolygonSoup(const tc::PolygonSoup& soup, vtkPolyData* output);
 
+/// Polylines over vertices of `mesh`: path k visits ids[offsets[k] .. offsets[k+1]). `output`
+/// gets only the points used, with point array InputPointId (their ids in `mesh`). With
+/// offsets {0, 1, 2, ...} the paths are single vertices and become vertex cells instead.
+TRICHARTCOMMON_EXPORT void FromVertexPaths(const tc::TriMesh& mesh,
+  const std::vector<int64_t>& offsets, const std::vector<int32_t>& ids, vtkPolyData* output,
+  bool asVertices = false);
+
 /// A new double array named `name` holding `values` (#tuples x components, interleaved).
 TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, int components, const std::vector<double>& values);
@@ -49,6 +58,16 @@ TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(
 /// A new integer array from `values`: (un)signed char for 1-byte T, int for 4, vtkIdType for 8.
 template <typename T>
 vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name, const std::vector<T>& values);
+
+/// Copies the array `name` of `attributes` (point or cell data) into `values` as doubles.
+/// Returns false and says which array is missing or has the wrong size in `error`.
+TRICHARTCOMMON_EXPORT bool ReadArray(vtkDataSetAttributes* attributes, const char* name,
+  vtkIdType tuples, int components, std::vector<double>& values, std::string& error);
+
+/// The same for integer arrays (ids, flags); values are rounded to the nearest integer.
+template <typename T>
+bool ReadIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  std::vector<T>& values, std::string& error);
 
 /// Adds a string array `name` to `fd`, one line of `text` per value.
 TRICHARTCOMMON_EXPORT void SetTextField(vtkFieldData* fd, const char* name, const std::string& text);

@@ -91,6 +91,7 @@ int tcCurvature::RequestData(
   pd->SetNormals(tcvtk::MakeArray(tc::kVertexNormal, 3, k.normals));
   pd->SetActiveScalars(tc::kMeanCurvature);
   output->GetCellData()->AddArray(tcvtk::MakeArray(tc::kFaceMeanCurvature, 1, k.faceMean));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kCrestVertex, tc::crestVertices(mesh, lines)));
 
   vtkNew<vtkPoints> crestPoints;
   crestPoints->SetDataTypeToDouble();

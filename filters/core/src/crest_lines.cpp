@@ -401,4 +401,35 @@ CrestLines extractCrestLines(const TriMesh& mesh, const CurvatureResult& curvatu
   progress.report(1.0);
   return out;
 }
+std::vector<uint8_t> crestVertices(const TriMesh& mesh, const CrestLines& lines)
+{
+  std::vector<uint8_t> marked(mesh.numPoints(), 0);
+  if (lines.pointEdge.empty())
+  {
+    return marked;
+  }
+  const EdgeTable edges = buildEdgeTable(mesh.triangles);
+  const int64_t np = static_cast<int64_t>(lines.pointEdge.size());
+  for (int64_t p = 0; p < np; ++p)
+  {
+    const int32_t e = lines.pointEdge[p];
+    if (e < 0 || e >= edges.numEdges())
+    {
+      throw InputError("crest point " + std::to_string(p) + " names edge " + std::to_string(e) +
+        ", which the mesh does not have: the crest lines belong to another mesh");
+    }
+    const int32_t a = edges.vertices[2 * e];
+    const int32_t b = edges.vertices[2 * e + 1];
+    double da = 0.0;
+    double db = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double x = lines.points[3 * p + c];
+      da += (x - mesh.points[3 * a + c]) * (x - mesh.points[3 * a + c]);
+      db += (x - mesh.points[3 * b + c]) * (x - mesh.points[3 * b + c]);
+    }
+    marked[da <= db ? a : b] = 1;
+  }
+  return marked;
+}
 } // namespace tc

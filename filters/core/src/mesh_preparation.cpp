@@ -61,7 +61,7 @@ double doubleArea(const double* points, int64_t a, int64_t b, int64_t c)
   return norm(cross(minus(pointOf(points, b), pa), minus(pointOf(points, c), pa)));
 }
 
-/// Union-find over corners; the root of a set is its lowest element, so results do not
+/// Union-find (corners, faces); the root of a set is its lowest element, so results do not
 /// depend on the order of the unions.
 class DisjointSets
 {
@@ -366,9 +366,9 @@ private:
 };
 
 /// Representative of every used point: the lowest id of its group of duplicates. Exact
-/// duplicates are found by sorting; with a tolerance, points are visited in id order and join
-/// the lowest-id representative within the tolerance (a grid of cells at least that large
-/// limits the search to 27 cells), else become one.
+/// duplicates are found by hashing; with a tolerance, points are visited in id order and join
+/// the lowest-id representative within the tolerance (found in a grid of cells), else become
+/// one.
 std::vector<int32_t> mergePoints(const PolygonSoup& soup, const std::vector<uint8_t>& used,
   const Vec3& low, double diagonal, double tolerance)
 {
@@ -411,46 +411,41 @@ std::vector<int32_t> mergePoints(const PolygonSoup& soup, const std::vector<uint
     return representative;
   }
 
-  // Cells no smaller than 1e-9 of the diagonal keep cell coordinates far from overflow; any
-  // cell size >= tolerance finds every neighbour within the 27 cells around a point.
-  const double cellSize = std::max(tolerance, 1e-9 * diagonal);
+  // Cells of 2.5 tolerances: the ball of radius tolerance around a point then reaches, along
+  // each axis, only its own cell and the neighbour on the nearer side (8 cells, not 27), with a
+  // margin for rounding. Cells no smaller than 1e-9 of the diagonal keep cell coordinates far
+  // from overflow.
+  const double cellSize = std::max(2.5 * tolerance, 1e-9 * diagonal);
   const double tolerance2 = tolerance * tolerance;
-  auto cellOf = [&](int64_t v)
-  {
-    std::array<int64_t, 3> cell;
-    for (int c = 0; c < 3; ++c)
-    {
-      cell[c] = static_cast<int64_t>(std::floor((points[3 * v + c] - low[c]) / cellSize));
-    }
-    return cell;
-  };
   CellHash cells(static_cast<int64_t>(ids.size()));
   std::vector<int32_t> next(nv, -1);
   for (int32_t v : ids)
   {
-    const std::array<int64_t, 3> cell = cellOf(v);
+    std::array<int64_t, 3> cell;
+    std::array<int, 3> side;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double x = (points[3 * static_cast<int64_t>(v) + c] - low[c]) / cellSize;
+      cell[c] = static_cast<int64_t>(std::floor(x));
+      side[c] = x - static_cast<double>(cell[c]) < 0.5 ? -1 : 1;
+    }
     const Vec3 p = pointOf(points, v);
     int32_t best = -1;
-    for (int dx = -1; dx <= 1; ++dx)
+    for (int corner = 0; corner < 8; ++corner)
     {
-      for (int dy = -1; dy <= 1; ++dy)
+      const int64_t slot = cells.find({ cell[0] + ((corner & 1) ? side[0] : 0),
+        cell[1] + ((corner & 2) ? side[1] : 0), cell[2] + ((corner & 4) ? side[2] : 0) });
+      if (slot < 0)
       {
-        for (int dz = -1; dz <= 1; ++dz)
+        continue;
+      }
+      for (int32_t q = cells.head(slot); q >= 0 && (best < 0 || q < best); q = next[q])
+      {
+        const Vec3 d = minus(pointOf(points, q), p);
+        if (dot(d, d) <= tolerance2)
         {
-          const int64_t slot = cells.find({ cell[0] + dx, cell[1] + dy, cell[2] + dz });
-          if (slot < 0)
-          {
-            continue;
-          }
-          for (int32_t q = cells.head(slot); q >= 0 && (best < 0 || q < best); q = next[q])
-          {
-            const Vec3 d = minus(pointOf(points, q), p);
-            if (dot(d, d) <= tolerance2)
-            {
-              best = q;
-              break;
-            }
-          }
+          best = q;
+          break;
         }
       }
     }
@@ -729,10 +724,23 @@ int32_t splitNonManifold(
     partner[sf] = sg;
     partner[sg] = sf;
   }
-  int32_t next = numVertices;
+  // Faces on the same non-manifold edge whose corners there fall into the same two fans end
+  // up on one output edge; unglued ones among more than 2 such faces are cut away.
+  std::vector<int32_t> nonManifold;
+  for (int32_t e = 0; e < edges.numEdges(); ++e)
+  {
+    if (edges.valence(e) > 2)
+    {
+      nonManifold.push_back(e);
+    }
+  }
+  auto cornerAt = [&original](int32_t f, int32_t v)
+  { return 3 * f + (original[3 * f] == v ? 0 : (original[3 * f + 1] == v ? 1 : 2)); };
+  std::vector<std::array<int32_t, 2>> fans;
+  DisjointSets glued(0);
   for (bool cut = true; cut;)
   {
-    DisjointSets glued(3 * nf);
+    glued = DisjointSets(3 * nf);
     for (int32_t side = 0; side < 3 * nf; ++side)
     {
       if (partner[side] > side)
@@ -740,45 +748,26 @@ int32_t splitNonManifold(
         joinSides(original, side, partner[side], glued);
       }
     }
-    result.inputPointId.resize(numVertices);
-    result.nonManifoldVertex.resize(numVertices);
-    std::vector<int32_t> fanVertex(3 * nf, -1);
-    std::vector<uint8_t> vertexTaken(numVertices, 0);
-    next = numVertices;
-    for (int32_t c = 0; c < 3 * nf; ++c)
-    {
-      const int32_t root = glued.find(c);
-      if (fanVertex[root] < 0)
-      {
-        const int32_t v = original[c];
-        if (!vertexTaken[v])
-        {
-          vertexTaken[v] = 1;
-          fanVertex[root] = v;
-        }
-        else
-        {
-          fanVertex[root] = next++;
-          result.inputPointId.push_back(result.inputPointId[v]);
-          result.nonManifoldVertex.push_back(result.nonManifoldVertex[v]);
-        }
-      }
-      tri[c] = fanVertex[root];
-    }
-    edges = buildEdgeTable(tri);
     cut = false;
-    for (int32_t e = 0; e < edges.numEdges(); ++e)
+    for (const int32_t e : nonManifold)
     {
+      const int32_t* faces = edges.edgeFaces.data() + edges.faceOffsets[e];
       const int64_t valence = edges.valence(e);
-      for (int64_t k = 0; k < valence && valence > 2; ++k)
+      fans.resize(valence);
+      for (int64_t k = 0; k < valence; ++k)
       {
-        const int32_t f = edges.edgeFaces[edges.faceOffsets[e] + k];
+        fans[k] = { glued.find(cornerAt(faces[k], edges.vertices[2 * e])),
+          glued.find(cornerAt(faces[k], edges.vertices[2 * e + 1])) };
+      }
+      for (int64_t k = 0; k < valence; ++k)
+      {
+        const int32_t f = faces[k];
         const int i = sideOf(edges, f, e);
-        if (partner[3 * f + i] >= 0)
+        if (partner[3 * f + i] >= 0 || std::count(fans.begin(), fans.end(), fans[k]) <= 2)
         {
           continue;
         }
-        // The other sides through the two ends of side i.
+        // Cut one more glued side through an end of side i.
         const int32_t before = 3 * f + (i + 2) % 3;
         const int32_t after = 3 * f + (i + 1) % 3;
         const int32_t side = partner[before] >= 0 ? before : after;
@@ -791,6 +780,32 @@ int32_t splitNonManifold(
       }
     }
   }
+  result.inputPointId.resize(numVertices);
+  result.nonManifoldVertex.resize(numVertices);
+  std::vector<int32_t> fanVertex(3 * nf, -1);
+  std::vector<uint8_t> vertexTaken(numVertices, 0);
+  int32_t next = numVertices;
+  for (int32_t c = 0; c < 3 * nf; ++c)
+  {
+    const int32_t root = glued.find(c);
+    if (fanVertex[root] < 0)
+    {
+      const int32_t v = original[c];
+      if (!vertexTaken[v])
+      {
+        vertexTaken[v] = 1;
+        fanVertex[root] = v;
+      }
+      else
+      {
+        fanVertex[root] = next++;
+        result.inputPointId.push_back(result.inputPointId[v]);
+        result.nonManifoldVertex.push_back(result.nonManifoldVertex[v]);
+      }
+    }
+    tri[c] = fanVertex[root];
+  }
+  edges = buildEdgeTable(tri);
   return next;
 }
 

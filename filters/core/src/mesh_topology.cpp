@@ -92,4 +92,23 @@ VertexRing buildVertexRing(const EdgeTable& edges, int64_t numPoints)
   }
   return ring;
 }
+std::vector<int32_t> labelBoundaryEdges(const EdgeTable& edges, const std::vector<int32_t>& faceLabels)
+{
+  std::vector<int32_t> pairs;
+  const int64_t ne = edges.numEdges();
+  for (int64_t e = 0; e < ne; ++e)
+  {
+    const int32_t first = faceLabels[edges.edgeFaces[edges.faceOffsets[e]]];
+    for (int64_t k = edges.faceOffsets[e] + 1; k < edges.faceOffsets[e + 1]; ++k)
+    {
+      if (faceLabels[edges.edgeFaces[k]] != first)
+      {
+        pairs.push_back(edges.vertices[2 * e]);
+        pairs.push_back(edges.vertices[2 * e + 1]);
+        break;
+      }
+    }
+  }
+  return pairs;
+}
 } // namespace tc

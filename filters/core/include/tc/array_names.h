@@ -24,6 +24,14 @@ constexpr const char* kFaceMeanCurvature = "FaceMeanCurvature";     ///< cell: m
 constexpr const char* kVertexNormal = "Normals";                    ///< point: fitted unit normal
 constexpr const char* kStrength = "Strength";                       ///< crest cell: integral of |k|
 constexpr const char* kCrestType = "CrestType";                     ///< crest cell: 0 ridge, 1 valley
+constexpr const char* kCrestVertex = "CrestVertex";                 ///< point: 1 next to a crest line
+
+// tcSpectralClustering / tcFeatureRefinement
+constexpr const char* kClusterId = "ClusterId";           ///< cell: cluster of the face
+constexpr const char* kEigenvalues = "Eigenvalues";       ///< field: largest eigenvalues, descending
+constexpr const char* kFeatureVertex = "FeatureVertex";   ///< point: 1 on a feature line
+constexpr const char* kCornerVertex = "CornerVertex";     ///< point: 1 at a corner
+constexpr const char* kMeanAbsCurvature = "MeanAbsCurvature"; ///< line cell: mean |H| along it
 
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read

@@ -72,4 +72,10 @@ struct CrestLines
 /// @throws InputError when the curvature does not belong to the mesh
 CrestLines extractCrestLines(const TriMesh& mesh, const CurvatureResult& curvature,
   const CrestLineOptions& options = {}, const Progress& progress = {});
+
+/// Crest lines snapped to mesh vertices: each crest point marks the nearer end of the edge it
+/// lies on. Mesh edges whose two ends are marked run along a crest; eq. 3 and 4 of Feng et al.
+/// lower the similarity of the two faces of such an edge.
+/// @return #V flags, 1 at a vertex next to a crest line
+std::vector<uint8_t> crestVertices(const TriMesh& mesh, const CrestLines& lines);
 } // namespace tc
