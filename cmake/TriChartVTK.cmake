@@ -65,7 +65,6 @@ if (TRICHART_WRAP_PYTHON)
     INSTALL_HEADERS OFF
     BUILD_STATIC OFF
     TARGET TriChart::Python)
-  add_subdirectory(python)
 endif ()
 
 if (TRICHART_BUILD_PARAVIEW_PLUGIN AND ParaView_FOUND)
@@ -87,6 +86,11 @@ if (TRICHART_BUILD_PARAVIEW_PLUGIN AND ParaView_FOUND)
     "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/trichart/plugins/TriChart/TriChart.so")
 elseif (TRICHART_BUILD_PARAVIEW_PLUGIN)
   message(STATUS "TriChart: ParaView not found; the plugin is not built")
+endif ()
+
+# After the plugin, whose path the package's _config.py records.
+if (TRICHART_WRAP_PYTHON)
+  add_subdirectory(python)
 endif ()
 
 if (TRICHART_BUILD_APP)

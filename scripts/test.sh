@@ -9,6 +9,14 @@ build="${TRICHART_BUILD_DIR:-$here/build}"
 echo "test: the installed package, from another folder"
 (cd / && /usr/bin/python3 -c "import trichart; print('import trichart', trichart.__version__)")
 (cd / && trichart info)
+if command -v pvpython >/dev/null; then
+  (cd / && pvpython -c "
+import trichart
+from paraview.simple import LoadPlugin
+LoadPlugin(trichart.plugin_path(), remote=False, ns=globals())
+assert 'TriChartCurvature' in globals(), 'the installed plugin has no TriChart filters'
+print('pvpython loads', trichart.plugin_path())")
+fi
 
 echo "test: ctest"
 cd "$build"
