@@ -22,9 +22,13 @@ int main(int argc, char* argv[])
   QCommandLineParser parser;
   parser.setApplicationDescription("TriChart viewer: inspect every stage of the pipeline.");
   parser.addHelpOption();
-  parser.addPositionalArgument("mesh", "Mesh file to open (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk).");
-  QCommandLineOption screenshot("screenshot", "Run up to the stage, save a PNG of the window and exit.", "file");
-  QCommandLineOption stage("stage", "Stage to show: input, preparation or curvature (default).", "name", "curvature");
+  parser.addPositionalArgument(
+    "mesh", "Mesh file to open (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk).");
+  QCommandLineOption screenshot(
+    "screenshot", "Run up to the stage, save a PNG of the window and exit.", "file");
+  QCommandLineOption stage("stage",
+    "Stage to show: input, preparation, curvature (default), clusters or features.", "name",
+    "curvature");
   QCommandLineOption array("array", "Colour the surface by this array.", "name");
   parser.addOption(screenshot);
   parser.addOption(stage);
@@ -35,7 +39,7 @@ int main(int argc, char* argv[])
   if (stageIndex < 0)
   {
     std::cerr << "trichart-viewer: unknown stage '" << parser.value(stage).toStdString()
-              << "'; use input, preparation or curvature\n";
+              << "'; use input, preparation, curvature, clusters or features\n";
     return 2;
   }
 
@@ -70,7 +74,8 @@ int main(int argc, char* argv[])
     const bool saved = window.SaveScreenshot(parser.value(screenshot));
     if (!saved)
     {
-      std::cerr << "trichart-viewer: cannot write " << parser.value(screenshot).toStdString() << "\n";
+      std::cerr << "trichart-viewer: cannot write " << parser.value(screenshot).toStdString()
+                << "\n";
     }
     return ok && saved ? 0 : 1;
   }

@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcViewerWindow.h"
 
+#include "tcColorMaps.h"
 #include "tcCurvature.h"
+#include "tcFeatureRefinement.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
+#include "tcSpectralClustering.h"
 
 #include "tc/array_names.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
+#include <QColor>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
@@ -37,6 +41,7 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGlyph3DMapper.h>
 #include <vtkLookupTable.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -44,6 +49,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkSphereSource.h>
 #include <vtkTextProperty.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -54,41 +60,9 @@
 
 namespace
 {
-const char* const kStageNames[] = { "input", "preparation", "curvature" };
-const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature" };
-
-/// Blue (concave) - white - red (convex), symmetric about 0 over 95% of the values.
-void DivergingColors(vtkLookupTable* lut, vtkDataArray* values, int component)
-{
-  std::vector<double> magnitudes(values->GetNumberOfTuples());
-  for (size_t i = 0; i < magnitudes.size(); ++i)
-  {
-    magnitudes[i] = std::abs(values->GetComponent(static_cast<vtkIdType>(i), component));
-  }
-  double limit = 1.0;
-  if (!magnitudes.empty())
-  {
-    const size_t k = std::min(magnitudes.size() - 1, magnitudes.size() * 95 / 100);
-    std::nth_element(magnitudes.begin(), magnitudes.begin() + k, magnitudes.end());
-    limit = magnitudes[k] > 0.0 ? magnitudes[k] : 1.0;
-  }
-  lut->SetNumberOfTableValues(256);
-  lut->SetTableRange(-limit, limit);
-  for (int i = 0; i < 256; ++i)
-  {
-    const double t = i / 255.0;
-    const double s = t < 0.5 ? t / 0.5 : (t - 0.5) / 0.5;
-    if (t < 0.5)
-    {
-      lut->SetTableValue(i, 0.23 + 0.77 * s, 0.30 + 0.70 * s, 0.75 + 0.25 * s, 1.0);
-    }
-    else
-    {
-      lut->SetTableValue(i, 1.0 - 0.29 * s, 1.0 - 0.98 * s, 1.0 - 0.85 * s, 1.0);
-    }
-  }
-  lut->Build();
-}
+const char* const kStageNames[] = { "input", "preparation", "curvature", "clusters", "features" };
+const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature", "Spectral clusters",
+  "Feature lines and corners" };
 
 /// A rainbow over the array's range, for arrays that are not signed curvatures.
 void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
@@ -112,10 +86,11 @@ tcViewerWindow::tcViewerWindow()
 {
   this->Preparation->SetInputConnection(this->Reader->GetOutputPort());
   this->Curvature->SetInputConnection(this->Preparation->GetOutputPort());
-  for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(this->Reader.Get()),
-         static_cast<vtkAlgorithm*>(this->Preparation.Get()),
-         static_cast<vtkAlgorithm*>(this->Curvature.Get()) })
+  this->Clustering->SetInputConnection(this->Curvature->GetOutputPort());
+  this->Refinement->SetInputConnection(this->Clustering->GetOutputPort());
+  for (int stage = 0; stage < StageCount; ++stage)
   {
+    vtkAlgorithm* a = this->StageAlgorithm(stage);
     a->AddObserver(vtkCommand::ProgressEvent, this, &tcViewerWindow::OnProgress);
     a->AddObserver(vtkCommand::ErrorEvent, this, &tcViewerWindow::OnError);
   }
@@ -124,6 +99,13 @@ tcViewerWindow::tcViewerWindow()
 }
 
 tcViewerWindow::~tcViewerWindow() = default;
+
+vtkAlgorithm* tcViewerWindow::StageAlgorithm(int stage) const
+{
+  vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature, this->Clustering,
+    this->Refinement };
+  return algorithms[stage];
+}
 
 int tcViewerWindow::StageFromName(const QString& name)
 {
@@ -153,8 +135,18 @@ void tcViewerWindow::BuildUi()
   this->LineMapper->SetResolveCoincidentTopologyToPolygonOffset();
   this->LineActor->GetProperty()->SetColor(0.05, 0.05, 0.05);
   this->LineActor->GetProperty()->SetLineWidth(2.0);
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  this->CornerSphere->SetThetaResolution(12);
+  this->CornerSphere->SetPhiResolution(8);
+  glyphs->SetSourceConnection(this->CornerSphere->GetOutputPort());
+  glyphs->ScalingOff();
+  glyphs->ScalarVisibilityOff();
+  this->CornerActor->SetMapper(glyphs);
+  this->CornerActor->GetProperty()->SetColor(0.85, 0.1, 0.1);
   this->Renderer->AddActor(this->SurfaceActor);
   this->Renderer->AddActor(this->LineActor);
+  this->Renderer->AddActor(this->CornerActor);
+  this->CornerActor->VisibilityOff();
   this->Legend->SetNumberOfLabels(5);
   this->Legend->SetWidth(0.08);
   this->Legend->SetHeight(0.5);
@@ -176,13 +168,16 @@ void tcViewerWindow::BuildUi()
   {
     this->Stages->addItem(label);
   }
-  this->Stages->setMaximumHeight(90);
+  this->Stages->setMaximumHeight(110);
   layout->addWidget(new QLabel("<b>Stages</b>", panel));
   layout->addWidget(this->Stages);
   this->Panels = new QStackedWidget(panel);
-  this->Panels->addWidget(new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files.", panel));
+  this->Panels->addWidget(
+    new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files.", panel));
   this->Panels->addWidget(this->BuildPreparationPanel());
   this->Panels->addWidget(this->BuildCurvaturePanel());
+  this->Panels->addWidget(this->BuildClusteringPanel());
+  this->Panels->addWidget(this->BuildRefinementPanel());
   layout->addWidget(this->Panels);
   auto* apply = new QPushButton("Apply", panel);
   layout->addWidget(apply);
@@ -191,9 +186,12 @@ void tcViewerWindow::BuildUi()
   auto* form = new QFormLayout();
   this->ColorBy = new QComboBox(panel);
   form->addRow("Colour by", this->ColorBy);
-  this->ShowLines = new QCheckBox("Crest lines", panel);
+  this->ShowLines = new QCheckBox("Lines (crests, boundaries, features)", panel);
   this->ShowLines->setChecked(true);
   form->addRow(this->ShowLines);
+  this->ShowCorners = new QCheckBox("Corners", panel);
+  this->ShowCorners->setChecked(true);
+  form->addRow(this->ShowCorners);
   this->ShowEdges = new QCheckBox("Mesh edges", panel);
   form->addRow(this->ShowEdges);
   layout->addLayout(form);
@@ -227,8 +225,14 @@ void tcViewerWindow::BuildUi()
   connect(this->ShowLines, &QCheckBox::toggled, this,
     [this](bool on)
     {
-      this->LineActor->SetVisibility(on && this->LineMapper->GetInput() &&
-        this->CurrentStage == CurvatureStage);
+      this->LineActor->SetVisibility(
+        on && this->LineMapper->GetInput() && this->CurrentStage >= CurvatureStage);
+      this->RenderWindow->Render();
+    });
+  connect(this->ShowCorners, &QCheckBox::toggled, this,
+    [this](bool on)
+    {
+      this->CornerActor->SetVisibility(on && this->CurrentStage == FeaturesStage);
       this->RenderWindow->Render();
     });
   connect(this->ShowEdges, &QCheckBox::toggled, this,
@@ -249,9 +253,10 @@ void tcViewerWindow::BuildUi()
   connect(this->Cancel, &QPushButton::clicked, this,
     [this]()
     {
-      this->Reader->AbortExecuteOn();
-      this->Preparation->AbortExecuteOn();
-      this->Curvature->AbortExecuteOn();
+      for (int stage = 0; stage < StageCount; ++stage)
+      {
+        this->StageAlgorithm(stage)->AbortExecuteOn();
+      }
     });
 
   // Menus.
@@ -361,6 +366,61 @@ QWidget* tcViewerWindow::BuildCurvaturePanel()
   return w;
 }
 
+QWidget* tcViewerWindow::BuildClusteringPanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  this->NumberOfClusters = new QSpinBox(w);
+  this->NumberOfClusters->setRange(1, 1000);
+  this->NumberOfClusters->setValue(this->Clustering->GetNumberOfClusters());
+  form->addRow("NumberOfClusters", this->NumberOfClusters);
+  this->Seed = new QSpinBox(w);
+  this->Seed->setRange(0, 1000000);
+  this->Seed->setValue(this->Clustering->GetSeed());
+  form->addRow("Seed", this->Seed);
+  this->ClusterCrestBeta = new QDoubleSpinBox(w);
+  this->ClusterCrestBeta->setRange(0.0, 1.0);
+  this->ClusterCrestBeta->setSingleStep(0.05);
+  this->ClusterCrestBeta->setValue(this->Clustering->GetCrestBeta());
+  form->addRow("CrestBeta", this->ClusterCrestBeta);
+  this->NystromThreshold = new QSpinBox(w);
+  this->NystromThreshold->setRange(100, 100000000);
+  this->NystromThreshold->setValue(static_cast<int>(this->Clustering->GetNystromThreshold()));
+  form->addRow("NystromThreshold", this->NystromThreshold);
+  return w;
+}
+
+QWidget* tcViewerWindow::BuildRefinementPanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  auto fraction = [w](double value)
+  {
+    auto* s = new QDoubleSpinBox(w);
+    s->setRange(0.0, 1.0);
+    s->setDecimals(3);
+    s->setSingleStep(0.01);
+    s->setValue(value);
+    return s;
+  };
+  this->BandFraction = fraction(this->Refinement->GetBandFraction());
+  form->addRow("BandFraction", this->BandFraction);
+  this->CurvatureTopFraction = fraction(this->Refinement->GetCurvatureTopFraction());
+  form->addRow("CurvatureTopFraction", this->CurvatureTopFraction);
+  this->CurvatureThresholdScale = new QDoubleSpinBox(w);
+  this->CurvatureThresholdScale->setRange(0.0, 10.0);
+  this->CurvatureThresholdScale->setSingleStep(0.1);
+  this->CurvatureThresholdScale->setValue(this->Refinement->GetCurvatureThresholdScale());
+  form->addRow("CurvatureThresholdScale", this->CurvatureThresholdScale);
+  this->CornerRings = new QSpinBox(w);
+  this->CornerRings->setRange(1, 50);
+  this->CornerRings->setValue(this->Refinement->GetCornerRings());
+  form->addRow("CornerRings", this->CornerRings);
+  this->CornerFraction = fraction(this->Refinement->GetCornerFraction());
+  form->addRow("CornerFraction", this->CornerFraction);
+  return w;
+}
+
 void tcViewerWindow::PushParameters()
 {
   // Setting an unchanged value does not modify a filter, so only what changed re-runs.
@@ -374,6 +434,15 @@ void tcViewerWindow::PushParameters()
   this->Curvature->SetRobustIterations(this->RobustIterations->value());
   this->Curvature->SetComputeCrestLines(this->CrestLines->isChecked());
   this->Curvature->SetCrestStrengthThreshold(this->CrestThreshold->value());
+  this->Clustering->SetNumberOfClusters(this->NumberOfClusters->value());
+  this->Clustering->SetSeed(this->Seed->value());
+  this->Clustering->SetCrestBeta(this->ClusterCrestBeta->value());
+  this->Clustering->SetNystromThreshold(this->NystromThreshold->value());
+  this->Refinement->SetBandFraction(this->BandFraction->value());
+  this->Refinement->SetCurvatureTopFraction(this->CurvatureTopFraction->value());
+  this->Refinement->SetCurvatureThresholdScale(this->CurvatureThresholdScale->value());
+  this->Refinement->SetCornerRings(this->CornerRings->value());
+  this->Refinement->SetCornerFraction(this->CornerFraction->value());
 }
 
 bool tcViewerWindow::OpenFile(const QString& path, int stage)
@@ -400,16 +469,17 @@ bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
   algorithm->Update(port);
   this->Running = false;
   this->Cancel->setEnabled(false);
-  const bool aborted = this->Reader->GetAbortExecute() || this->Preparation->GetAbortExecute() ||
-    this->Curvature->GetAbortExecute();
+  bool aborted = false;
+  for (int stage = 0; stage < StageCount; ++stage)
+  {
+    aborted = aborted || this->StageAlgorithm(stage)->GetAbortExecute();
+  }
   if (aborted)
   {
-    for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(this->Reader.Get()),
-           static_cast<vtkAlgorithm*>(this->Preparation.Get()),
-           static_cast<vtkAlgorithm*>(this->Curvature.Get()) })
+    for (int stage = 0; stage < StageCount; ++stage)
     {
-      a->AbortExecuteOff();
-      a->Modified(); // the cancelled result must not be reused
+      this->StageAlgorithm(stage)->AbortExecuteOff();
+      this->StageAlgorithm(stage)->Modified(); // the cancelled result must not be reused
     }
     this->statusBar()->showMessage("Cancelled", 5000);
     return false;
@@ -431,11 +501,11 @@ bool tcViewerWindow::ShowStage(int stage)
     return false;
   }
   this->PushParameters();
-  vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature };
-  if (!this->Run(algorithms[stage]))
+  if (!this->Run(this->StageAlgorithm(stage)))
   {
     this->SurfaceActor->VisibilityOff();
     this->LineActor->VisibilityOff();
+    this->CornerActor->VisibilityOff();
     this->Legend->VisibilityOff();
     this->Info->setText("<font color='#b00'>" + this->Error.toHtmlEscaped() + "</font>");
     this->RenderWindow->Render();
@@ -447,9 +517,14 @@ bool tcViewerWindow::ShowStage(int stage)
     this->Stages->setCurrentRow(stage);
     this->Panels->setCurrentIndex(stage);
   }
-  auto* surface = vtkPolyData::SafeDownCast(algorithms[stage]->GetOutputDataObject(0));
-  vtkPolyData* lines = stage == CurvatureStage ? this->Curvature->GetOutput(1) : nullptr;
-  this->Display(surface, lines);
+  vtkAlgorithm* algorithm = this->StageAlgorithm(stage);
+  auto* surface = vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0));
+  // Crest lines, cluster boundaries and feature lines are each stage's port 1.
+  vtkPolyData* lines = stage >= CurvatureStage
+    ? vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(1))
+    : nullptr;
+  vtkPolyData* corners = stage == FeaturesStage ? this->Refinement->GetOutput(2) : nullptr;
+  this->Display(surface, lines, corners);
 
   QString info = QString("<b>%1</b><br>%2 points, %3 cells")
                    .arg(kStageLabels[stage])
@@ -464,15 +539,20 @@ bool tcViewerWindow::ShowStage(int stage)
     QString text = QString(report).replace(this->FileName, QFileInfo(this->FileName).fileName());
     info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
   }
+  const char* lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines" };
   if (lines)
   {
-    info += QString("<br>%1 crest lines").arg(lines->GetNumberOfLines());
+    info += QString("<br>%1 %2").arg(lines->GetNumberOfLines()).arg(lineNames[stage]);
+  }
+  if (corners)
+  {
+    info += QString("<br>%1 corners").arg(corners->GetNumberOfPoints());
   }
   this->Info->setText(info);
   return true;
 }
 
-void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines)
+void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyData* corners)
 {
   this->Shown = vtkSmartPointer<vtkPolyData>::New();
   this->Shown->ShallowCopy(surface);
@@ -485,6 +565,15 @@ void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines)
     this->LineMapper->SetInputData(copy);
   }
   this->LineActor->SetVisibility(lines != nullptr && this->ShowLines->isChecked());
+  if (corners)
+  {
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->ShallowCopy(corners);
+    auto* glyphs = static_cast<vtkGlyph3DMapper*>(this->CornerActor->GetMapper());
+    glyphs->SetInputData(copy);
+    this->CornerSphere->SetRadius(0.008 * surface->GetLength());
+  }
+  this->CornerActor->SetVisibility(corners != nullptr && this->ShowCorners->isChecked());
   this->FillArrayChoices(this->Shown);
 }
 
@@ -512,11 +601,20 @@ void tcViewerWindow::FillArrayChoices(vtkPolyData* surface)
       }
     }
   }
-  // Keep the user's choice when the new output has it; curvature defaults to mean curvature.
+  // Each stage opens on its own result: clusters by ClusterId, curvature by mean curvature.
   QString choice = previous;
-  if (this->ColorBy->findText(choice) < 0 || choice == "Solid")
+  const QString clusters = QString("cell:") + tc::kClusterId;
+  if (this->ColorBy->findText(clusters) >= 0)
   {
-    choice = this->ColorBy->findText(tc::kMeanCurvature) >= 0 ? tc::kMeanCurvature : "Solid";
+    choice = clusters;
+  }
+  else if (this->ColorBy->findText(tc::kMeanCurvature) >= 0)
+  {
+    choice = tc::kMeanCurvature;
+  }
+  else if (this->ColorBy->findText(choice) < 0)
+  {
+    choice = "Solid";
   }
   this->SetColorArray(choice);
 }
@@ -542,9 +640,14 @@ void tcViewerWindow::SetColorArray(const QString& name)
   }
   vtkNew<vtkLookupTable> lut;
   const bool curvature = arrayName.contains("Curvature");
+  const bool labels = arrayName.endsWith("Id");
   if (curvature)
   {
-    DivergingColors(lut, values, 0);
+    tcvtk::DivergingColors(lut, values, 0);
+  }
+  else if (labels)
+  {
+    tcvtk::LabelColors(lut, values);
   }
   else
   {
@@ -566,7 +669,7 @@ void tcViewerWindow::SetColorArray(const QString& name)
   this->SurfaceMapper->UseLookupTableScalarRangeOn();
   this->Legend->SetLookupTable(lut);
   this->Legend->SetTitle(arrayName.toStdString().c_str());
-  this->Legend->VisibilityOn();
+  this->Legend->SetVisibility(!labels);
 }
 
 bool tcViewerWindow::SaveScreenshot(const QString& path)

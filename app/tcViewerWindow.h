@@ -3,7 +3,8 @@
  * @class tcViewerWindow
  * @brief The main window of trichart-viewer: a stage browser over the TriChart pipeline.
  *
- * The pipeline is tcMeshReader -> tcMeshPreparation -> tcCurvature. Selecting a stage shows
+ * The pipeline is tcMeshReader -> tcMeshPreparation -> tcCurvature -> tcSpectralClustering ->
+ * tcFeatureRefinement. Selecting a stage shows
  * its output; its parameters are edited in the panel and "Apply" re-runs what changed (the
  * VTK pipeline's modified times decide). Long runs show progress and can be cancelled;
  * errors are shown in the window, which stays usable.
@@ -30,6 +31,8 @@ class QSpinBox;
 class QStackedWidget;
 class QVTKOpenGLNativeWidget;
 class tcCurvature;
+class tcFeatureRefinement;
+class tcSpectralClustering;
 class tcMeshPreparation;
 class tcMeshReader;
 class vtkActor;
@@ -40,6 +43,7 @@ class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderer;
 class vtkScalarBarActor;
+class vtkSphereSource;
 
 class tcViewerWindow : public QMainWindow
 {
@@ -51,13 +55,16 @@ public:
     InputStage = 0,
     PreparationStage,
     CurvatureStage,
+    ClustersStage,
+    FeaturesStage,
     StageCount
   };
 
   tcViewerWindow();
   ~tcViewerWindow() override;
 
-  /// Stage from its command-line name ("input", "preparation", "curvature"); -1 if unknown.
+  /// Stage from its command-line name ("input", "preparation", "curvature", "clusters",
+  /// "features"); -1 if unknown.
   static int StageFromName(const QString& name);
 
   /// Opens a mesh and shows `stage`; false (with the error shown) on failure.
@@ -86,9 +93,12 @@ private:
   void BuildUi();
   QWidget* BuildPreparationPanel();
   QWidget* BuildCurvaturePanel();
+  QWidget* BuildClusteringPanel();
+  QWidget* BuildRefinementPanel();
+  vtkAlgorithm* StageAlgorithm(int stage) const;
   void PushParameters();
   bool Run(vtkAlgorithm* algorithm, int port = 0);
-  void Display(vtkPolyData* surface, vtkPolyData* lines);
+  void Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyData* corners);
   void FillArrayChoices(vtkPolyData* surface);
   void ReportError(const QString& message);
   void AddRecentFile(const QString& path);
@@ -99,12 +109,17 @@ private:
   vtkNew<tcMeshReader> Reader;
   vtkNew<tcMeshPreparation> Preparation;
   vtkNew<tcCurvature> Curvature;
+  vtkNew<tcSpectralClustering> Clustering;
+  vtkNew<tcFeatureRefinement> Refinement;
   vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkPolyDataMapper> SurfaceMapper;
   vtkNew<vtkActor> SurfaceActor;
   vtkNew<vtkPolyDataMapper> LineMapper;
   vtkNew<vtkActor> LineActor;
+  vtkNew<vtkPolyDataMapper> CornerMapper;
+  vtkNew<vtkActor> CornerActor;
+  vtkNew<vtkSphereSource> CornerSphere;
   vtkNew<vtkScalarBarActor> Legend;
   vtkSmartPointer<vtkPolyData> Shown;
 
@@ -114,6 +129,7 @@ private:
   QComboBox* ColorBy = nullptr;
   QCheckBox* ShowLines = nullptr;
   QCheckBox* ShowEdges = nullptr;
+  QCheckBox* ShowCorners = nullptr;
   QProgressBar* Progress = nullptr;
   QPushButton* Cancel = nullptr;
   QLabel* Info = nullptr;
@@ -128,6 +144,15 @@ private:
   QSpinBox* RobustIterations = nullptr;
   QCheckBox* CrestLines = nullptr;
   QDoubleSpinBox* CrestThreshold = nullptr;
+  QSpinBox* NumberOfClusters = nullptr;
+  QSpinBox* Seed = nullptr;
+  QDoubleSpinBox* ClusterCrestBeta = nullptr;
+  QSpinBox* NystromThreshold = nullptr;
+  QDoubleSpinBox* BandFraction = nullptr;
+  QDoubleSpinBox* CurvatureTopFraction = nullptr;
+  QDoubleSpinBox* CurvatureThresholdScale = nullptr;
+  QSpinBox* CornerRings = nullptr;
+  QDoubleSpinBox* CornerFraction = nullptr;
 
   QString FileName;
   QString Error;

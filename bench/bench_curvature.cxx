@@ -4,6 +4,8 @@
 // timed in the same run as the peer.
 //
 //   tc_bench_curvature [mesh ...]     default: bunny_glmark2 (70K) and dragon_vrip (871K)
+#include "bench_common.h"
+
 #include "tcCurvature.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
@@ -11,35 +13,15 @@
 #include <vtkCurvatures.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkTimerLog.h>
 
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
-namespace
-{
-double Seconds(vtkAlgorithm* algorithm)
-{
-  const double start = vtkTimerLog::GetUniversalTime();
-  algorithm->Update();
-  return vtkTimerLog::GetUniversalTime() - start;
-}
-}
-
 int main(int argc, char* argv[])
 {
-  std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i)
-  {
-    files.emplace_back(argv[i]);
-  }
-  if (files.empty())
-  {
-    files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
-      std::string(TC_SHARED_DATA_DIR) + "/static_large/dragon_vrip.ply.gz" };
-  }
+  const std::vector<std::string> files = tcbench::Meshes(argc, argv);
   std::cout << "mesh, triangles, read s, preparation s, curvature+crest s, total s "
                "(prep+curv+crest), crest lines, vtkCurvatures s (mean+Gauss), ratio\n";
   for (const std::string& file : files)
@@ -51,13 +33,13 @@ int main(int argc, char* argv[])
     }
     vtkNew<tcMeshReader> reader;
     reader->SetFileName(file.c_str());
-    const double read = Seconds(reader);
+    const double read = tcbench::Seconds(reader);
     vtkNew<tcMeshPreparation> prep;
     prep->SetInputConnection(reader->GetOutputPort());
-    const double prepare = Seconds(prep);
+    const double prepare = tcbench::Seconds(prep);
     vtkNew<tcCurvature> curvature;
     curvature->SetInputConnection(prep->GetOutputPort());
-    const double curv = Seconds(curvature);
+    const double curv = tcbench::Seconds(curvature);
 
     vtkNew<vtkCurvatures> peerMean;
     peerMean->SetInputConnection(prep->GetOutputPort());
@@ -65,14 +47,14 @@ int main(int argc, char* argv[])
     vtkNew<vtkCurvatures> peerGauss;
     peerGauss->SetInputConnection(prep->GetOutputPort());
     peerGauss->SetCurvatureTypeToGaussian();
-    const double peer = Seconds(peerMean) + Seconds(peerGauss);
+    const double peer = tcbench::Seconds(peerMean) + tcbench::Seconds(peerGauss);
 
     const double total = prepare + curv;
-    const std::string name = file.substr(file.find_last_of('/') + 1);
+    const std::string name = tcbench::BaseName(file);
     std::cout << name << ", " << prep->GetOutput()->GetNumberOfPolys() << ", " << read << ", "
               << prepare << ", " << curv << ", " << total << ", "
-              << curvature->GetOutput(1)->GetNumberOfLines() << ", " << peer << ", "
-              << total / peer << "\n";
+              << curvature->GetOutput(1)->GetNumberOfLines() << ", " << peer << ", " << total / peer
+              << "\n";
   }
   return 0;
 }

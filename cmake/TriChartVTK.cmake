@@ -29,8 +29,9 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/IO/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Preparation/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Curvature/vtk.module
+    ${CMAKE_SOURCE_DIR}/filters/Features/vtk.module
   REQUEST_MODULES
-    TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature
+    TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -46,7 +47,8 @@ vtk_module_build(
   SOVERSION ${PROJECT_VERSION_MAJOR})
 
 # The filter modules that users see (the Common module is internal).
-set(TRICHART_FILTER_MODULES TriChart::IO TriChart::Preparation TriChart::Curvature)
+set(TRICHART_FILTER_MODULES
+  TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features)
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(

@@ -265,8 +265,8 @@ vtkDataArray* FindArray(vtkDataSetAttributes* attributes, const char* name, vtkI
 }
 }
 
-bool ReadArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
-  int components, std::vector<double>& values, std::string& error)
+bool ReadArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples, int components,
+  std::vector<double>& values, std::string& error)
 {
   vtkDataArray* array = FindArray(attributes, name, tuples, components, error);
   if (!array)

@@ -70,7 +70,8 @@ bool ReadIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType 
   std::vector<T>& values, std::string& error);
 
 /// Adds a string array `name` to `fd`, one line of `text` per value.
-TRICHARTCOMMON_EXPORT void SetTextField(vtkFieldData* fd, const char* name, const std::string& text);
+TRICHARTCOMMON_EXPORT void SetTextField(
+  vtkFieldData* fd, const char* name, const std::string& text);
 
 /// Reads back a text field written by SetTextField ("" when absent).
 TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);

@@ -42,7 +42,8 @@ std::string Lower(std::string s)
 
 bool EndsWith(const std::string& s, const std::string& suffix)
 {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 /// The format key of a file name: "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk" or "".
@@ -119,7 +120,8 @@ const char* tcMeshReader::GetSupportedExtensions()
   return "ply ply.gz obj stl off vtp vtk";
 }
 
-int tcMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int tcMeshReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // 1. Output.
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -133,7 +135,8 @@ int tcMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   }
   if (!std::ifstream(this->FileName).good())
   {
-    vtkErrorMacro("Cannot open '" << this->FileName << "': the file does not exist or is not readable.");
+    vtkErrorMacro(
+      "Cannot open '" << this->FileName << "': the file does not exist or is not readable.");
     return 0;
   }
   const std::string format = FormatOf(this->FileName);
@@ -240,8 +243,7 @@ int tcMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   output->ShallowCopy(mesh);
   std::ostringstream report;
   report << "read " << format << " file '" << this->FileName << "'\n"
-         << output->GetNumberOfPoints() << " points, " << output->GetNumberOfPolys()
-         << " polygons";
+         << output->GetNumberOfPoints() << " points, " << output->GetNumberOfPolys() << " polygons";
   if (output->GetNumberOfStrips() > 0)
   {
     report << ", " << output->GetNumberOfStrips() << " triangle strips";

@@ -25,7 +25,8 @@ tcMeshPreparation::~tcMeshPreparation() = default;
 namespace
 {
 /// Copies the arrays of `in` to `out`, element i of `out` taking element ids[i] of `in`.
-void CopyArrays(vtkDataSetAttributes* in, vtkDataSetAttributes* out, const std::vector<int64_t>& ids)
+void CopyArrays(
+  vtkDataSetAttributes* in, vtkDataSetAttributes* out, const std::vector<int64_t>& ids)
 {
   vtkNew<vtkIdList> from;
   vtkNew<vtkIdList> to;

@@ -13,6 +13,7 @@ import vtkmodules.vtkCommonExecutionModel  # noqa: F401
 from .TriChartIO import *  # noqa: F401,F403
 from .TriChartPreparation import *  # noqa: F401,F403
 from .TriChartCurvature import *  # noqa: F401,F403
+from .TriChartFeatures import *  # noqa: F401,F403
 
 try:
     from . import _config_build as _config  # running from a build tree
@@ -21,7 +22,8 @@ except ImportError:
 
 __version__ = _config.VERSION
 
-from .pipeline import read_mesh, prepare, curvature, build  # noqa: E402,F401
+from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features,  # noqa: E402,F401
+                       build, TriChartError)
 
 
 def plugin_path():

@@ -71,15 +71,17 @@ def cmd_build(args):
     bar = None if args.quiet else ProgressBar()
     start = time.perf_counter()
     try:
-        result = build(args.mesh, args.output, progress=bar, image=not args.no_image)
+        result = build(args.mesh, args.output, progress=bar, image=not args.no_image,
+                       cluster_options={"number_of_clusters": args.clusters})
     finally:
         if bar:
             bar.close()
     seconds = time.perf_counter() - start
     surface, crest = result["surface"], result["crest_lines"]
     print(f"{args.mesh}: {surface.GetNumberOfPoints()} points, "
-          f"{surface.GetNumberOfCells()} triangles, {crest.GetNumberOfCells()} crest lines "
-          f"({seconds:.2f} s)")
+          f"{surface.GetNumberOfCells()} triangles, {crest.GetNumberOfCells()} crest lines, "
+          f"{result['feature_lines'].GetNumberOfCells()} feature lines, "
+          f"{result['corners'].GetNumberOfPoints()} corners ({seconds:.2f} s)")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():
@@ -105,6 +107,8 @@ def main(argv=None):
     p = sub.add_parser("build", help="run the pipeline on a mesh and write every stage")
     p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk)")
     p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("--clusters", type=int, default=16,
+                   help="number of spectral clusters (default 16)")
     p.add_argument("--no-image", action="store_true", help="do not render a PNG")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p = sub.add_parser("prepare", help="clean a mesh and write it as VTP")

@@ -7,7 +7,7 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
-from . import TriChartCurvature, TriChartIO, TriChartPreparation
+from . import TriChartCurvature, TriChartFeatures, TriChartIO, TriChartPreparation
 
 
 class TriChartError(RuntimeError):
@@ -79,21 +79,51 @@ def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, pr
     return _output(f), f.GetReport()
 
 
+def _configure(algorithm, options):
+    """Set properties from snake-case keyword options (min_neighbors -> SetMinNeighbors)."""
+    for name, value in options.items():
+        setter = "Set" + "".join(part[:1].upper() + part[1:] for part in name.split("_"))
+        if not hasattr(algorithm, setter):
+            raise TypeError(f"{algorithm.GetClassName()} has no option '{name}'")
+        getattr(algorithm, setter)(value)
+    return algorithm
+
+
 def curvature(mesh, progress=None, **options):
     """tcCurvature on a triangle mesh; returns (mesh with curvature arrays, crest lines).
 
     Options are the filter's properties in snake case: min_neighbors, max_rings, degree,
     robust, robust_iterations, compute_crest_lines, crest_strength_threshold.
     """
-    f = TriChartCurvature.tcCurvature()
+    f = _configure(TriChartCurvature.tcCurvature(), options)
     f.SetInputData(mesh)
-    for name, value in options.items():
-        setter = "Set" + "".join(part.capitalize() for part in name.split("_"))
-        if not hasattr(f, setter):
-            raise TypeError(f"tcCurvature has no option '{name}'")
-        getattr(f, setter)(value)
     run(f, "curvature", progress)
     return _output(f, 0), _output(f, 1)
+
+
+def cluster(surface, progress=None, **options):
+    """tcSpectralClustering on tcCurvature's output; returns (mesh with ClusterId, boundaries).
+
+    Options: number_of_clusters, number_of_eigenvectors, crest_beta, extra_edge_factor,
+    nystrom_threshold, nystrom_samples, k_means_restarts, seed.
+    """
+    f = _configure(TriChartFeatures.tcSpectralClustering(), options)
+    f.SetInputData(surface)
+    run(f, "clusters", progress)
+    return _output(f, 0), _output(f, 1)
+
+
+def refine_features(clusters, progress=None, **options):
+    """tcFeatureRefinement on tcSpectralClustering's output; returns (mesh with FeatureVertex
+    and CornerVertex, feature lines, corners).
+
+    Options: band_fraction, crest_beta, curvature_top_fraction, curvature_threshold_scale,
+    corner_rings, corner_fraction.
+    """
+    f = _configure(TriChartFeatures.tcFeatureRefinement(), options)
+    f.SetInputData(clusters)
+    run(f, "features", progress)
+    return _output(f, 0), _output(f, 1), _output(f, 2)
 
 
 def write_vtp(mesh, path):
@@ -116,24 +146,33 @@ def write_vtp(mesh, path):
     return path
 
 
-def build(path, outdir, progress=None, image=True, **curvature_options):
-    """The main job, as far as the pipeline goes today: read, prepare, curvature.
+def build(path, outdir, progress=None, image=True, curvature_options=None,
+          cluster_options=None, feature_options=None):
+    """The main job, as far as the pipeline goes today: read, prepare, curvature, spectral
+    clusters, feature refinement.
 
-    Writes prepared.vtp, curvature.vtp, crest_lines.vtp and (with image=True) curvature.png
-    into `outdir`; returns a dict with the outputs, the written paths and the report.
+    Writes prepared.vtp, curvature.vtp, crest_lines.vtp, clusters.vtp, cluster_boundaries.vtp,
+    features.vtp, feature_lines.vtp, corners.vtp and (with image=True) curvature.png and
+    features.png into `outdir`; returns a dict with the outputs, the written paths and the
+    preparation report.
     """
     os.makedirs(outdir, exist_ok=True)
     mesh = read_mesh(path, progress)
     clean, report = prepare(mesh, progress=progress)
-    surface, crest = curvature(clean, progress=progress, **curvature_options)
-    files = {
-        "prepared": write_vtp(clean, os.path.join(outdir, "prepared.vtp")),
-        "curvature": write_vtp(surface, os.path.join(outdir, "curvature.vtp")),
-        "crest_lines": write_vtp(crest, os.path.join(outdir, "crest_lines.vtp")),
-    }
+    surface, crest = curvature(clean, progress=progress, **(curvature_options or {}))
+    clustered, boundaries = cluster(surface, progress=progress, **(cluster_options or {}))
+    features, lines, corners = refine_features(clustered, progress=progress,
+                                               **(feature_options or {}))
+    outputs = {"prepared": clean, "curvature": surface, "crest_lines": crest,
+               "clusters": clustered, "cluster_boundaries": boundaries, "features": features,
+               "feature_lines": lines, "corners": corners}
+    files = {name: write_vtp(data, os.path.join(outdir, f"{name}.vtp"))
+             for name, data in outputs.items()}
     if image:
-        from .render import render_curvature
+        from .render import render_curvature, render_features
 
-        files["image"] = render_curvature(surface, crest, os.path.join(outdir, "curvature.png"))
-    return {"mesh": clean, "surface": surface, "crest_lines": crest, "files": files,
-            "report": report}
+        files["curvature_image"] = render_curvature(surface, crest,
+                                                    os.path.join(outdir, "curvature.png"))
+        files["features_image"] = render_features(features, lines, corners,
+                                                  os.path.join(outdir, "features.png"))
+    return dict(outputs, files=files, report=report, mesh=clean, surface=surface)

@@ -40,6 +40,21 @@ def diverging_lut(lo, hi):
     return lut
 
 
+def add_lines(renderer, lines, width):
+    """Draw `lines` (if any) in black over the surface."""
+    if lines is None or lines.GetNumberOfCells() == 0:
+        return
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(lines)
+    mapper.ScalarVisibilityOff()
+    mapper.SetResolveCoincidentTopologyToPolygonOffset()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(0.05, 0.05, 0.05)
+    actor.GetProperty().SetLineWidth(width)
+    renderer.AddActor(actor)
+
+
 def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600)):
     """A render window with `surface` coloured by `array`, crest lines on top, and a legend."""
     lo, hi = symmetric_range(surface.GetPointData().GetArray(array))
@@ -55,16 +70,7 @@ def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600))
     renderer = vtkRenderer()
     renderer.SetBackground(0.32, 0.34, 0.43)
     renderer.AddActor(actor)
-    if crest is not None and crest.GetNumberOfCells() > 0:
-        crest_mapper = vtkPolyDataMapper()
-        crest_mapper.SetInputData(crest)
-        crest_mapper.ScalarVisibilityOff()
-        crest_mapper.SetResolveCoincidentTopologyToPolygonOffset()
-        crest_actor = vtkActor()
-        crest_actor.SetMapper(crest_mapper)
-        crest_actor.GetProperty().SetColor(0.1, 0.1, 0.1)
-        crest_actor.GetProperty().SetLineWidth(2.0)
-        renderer.AddActor(crest_actor)
+    add_lines(renderer, crest, 2.0)
     bar = vtkScalarBarActor()
     bar.SetLookupTable(lut)
     bar.SetTitle(array)
@@ -105,3 +111,64 @@ def write_png(window, path):
 def render_curvature(surface, crest, path, array="MeanCurvature"):
     """Save a picture of the curvature stage to `path`."""
     return write_png(curvature_scene(surface, crest, array), path)
+
+
+def cluster_colors(count):
+    """A lookup table of `count` well-separated colours (golden-ratio hues)."""
+    import colorsys
+
+    lut = vtkLookupTable()
+    lut.SetNumberOfTableValues(max(count, 1))
+    lut.SetTableRange(0, max(count - 1, 1))
+    for i in range(max(count, 1)):
+        r, g, b = colorsys.hsv_to_rgb((i * 0.618033988749895) % 1.0, 0.55, 0.95)
+        lut.SetTableValue(i, r, g, b, 1.0)
+    lut.Build()
+    return lut
+
+
+def features_scene(features, lines=None, corners=None, size=(800, 600)):
+    """`features` coloured by ClusterId, feature lines in black and corners as red spheres."""
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    from vtkmodules.vtkFiltersCore import vtkGlyph3D
+
+    ids = features.GetCellData().GetArray("ClusterId")
+    count = int(ids.GetRange()[1]) + 1 if ids is not None else 1
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(features)
+    mapper.SetScalarModeToUseCellFieldData()
+    mapper.SelectColorArray("ClusterId")
+    mapper.SetLookupTable(cluster_colors(count))
+    mapper.UseLookupTableScalarRangeOn()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer.AddActor(actor)
+    add_lines(renderer, lines, 3.0)
+    if corners is not None and corners.GetNumberOfPoints() > 0:
+        diagonal = features.GetLength()
+        sphere = vtkSphereSource()
+        sphere.SetRadius(0.008 * diagonal)
+        glyphs = vtkGlyph3D()
+        glyphs.SetInputData(corners)
+        glyphs.SetSourceConnection(sphere.GetOutputPort())
+        glyphs.ScalingOff()
+        corner_mapper = vtkPolyDataMapper()
+        corner_mapper.SetInputConnection(glyphs.GetOutputPort())
+        corner_mapper.ScalarVisibilityOff()
+        corner_actor = vtkActor()
+        corner_actor.SetMapper(corner_mapper)
+        corner_actor.GetProperty().SetColor(0.85, 0.1, 0.1)
+        renderer.AddActor(corner_actor)
+    renderer.ResetCamera()
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*size)
+    window.AddRenderer(renderer)
+    return window
+
+
+def render_features(features, lines, corners, path):
+    """Save a picture of the feature stage (clusters, feature lines, corners) to `path`."""
+    return write_png(features_scene(features, lines, corners), path)

@@ -19,7 +19,8 @@ def check(condition, what):
 
 LoadPlugin(plugin, remote=False, ns=globals())
 # paraview.simple names the functions after the proxies' labels.
-for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature"):
+for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
+             "TriChartSpectralClustering", "TriChartFeatureRefinement"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)
@@ -45,6 +46,17 @@ check(info.GetNumberOfCells() > 0, "crest lines on output port 1")
 curv.Degree = 2
 UpdatePipeline(proxy=curv)
 check(curv.GetDataInformation(0).GetNumberOfPoints() == 6475, "re-runs with a new property")
+
+clusters = TriChartSpectralClustering(Input=curv, NumberOfClusters=12)  # noqa: F821
+check(clusters.Seed == 1 and clusters.NystromThreshold == 100000 and clusters.NystromSamples == 500,
+      "clustering defaults match the C++ defaults")
+features = TriChartFeatureRefinement(Input=clusters)  # noqa: F821
+check(features.BandFraction == 0.1 and features.CornerRings == 8, "refinement defaults")
+UpdatePipeline(proxy=features)
+clustered = servermanager.Fetch(clusters)
+check(clustered.GetCellData().GetArray("ClusterId").GetRange() == (0.0, 11.0), "12 clusters")
+check(features.GetDataInformation(1).GetNumberOfCells() > 0, "feature lines on port 1")
+check(features.GetDataInformation(2).GetNumberOfPoints() > 0, "corners on port 2")
 
 print("paraview plugin test:", "FAILED" if failures else "passed")
 sys.exit(1 if failures else 0)

@@ -21,7 +21,9 @@ def test_info_prints_versions_and_plugin():
 def test_build_writes_stages_and_a_picture(testing_data, tmp_path):
     r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", tmp_path)
     assert r.returncode == 0, r.stderr
-    for name in ("prepared.vtp", "curvature.vtp", "crest_lines.vtp", "curvature.png"):
+    for name in ("prepared.vtp", "curvature.vtp", "crest_lines.vtp", "clusters.vtp",
+                 "features.vtp", "feature_lines.vtp", "corners.vtp", "curvature.png",
+                 "features.png"):
         assert (tmp_path / name).stat().st_size > 0, name
     assert "3674 triangles" in r.stdout
     with open(tmp_path / "curvature.png", "rb") as f:
@@ -29,9 +31,11 @@ def test_build_writes_stages_and_a_picture(testing_data, tmp_path):
 
 
 def test_build_shows_progress(testing_data, tmp_path):
-    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image")
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image",
+            "--clusters", "6")
     assert r.returncode == 0, r.stderr
-    assert "curvature: 100%" in r.stderr
+    for stage in ("curvature", "clusters", "features"):
+        assert f"{stage}: 100%" in r.stderr
 
 
 @pytest.mark.parametrize("content,message", [
@@ -48,6 +52,12 @@ def test_bad_files_fail_with_a_message_and_write_nothing(tmp_path, content, mess
     assert r.returncode == 2
     assert "trichart: error:" in r.stderr and message in r.stderr
     assert not (out / "prepared.vtp").exists()
+
+
+def test_too_many_clusters_is_a_clear_error(testing_data, tmp_path):
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image")
+    assert r.returncode == 2
+    assert "12" in r.stderr and "16" in r.stderr
 
 
 def test_prepare_reports_and_splits(tmp_path):

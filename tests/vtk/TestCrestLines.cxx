@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Crest lines of tcCurvature on the bundled fandisk (a CAD part with sharp creases): lines are
 // found, each is above the strength threshold with a valid type, a threshold above the median
-// strength keeps at most half; then the lines over the mean-curvature colouring are compared with the baseline.
+// strength keeps at most half; then the lines over the mean-curvature colouring are compared with
+// the baseline.
 #include "tcCurvature.h"
 #include "tcTestUtilities.h"
 

@@ -65,7 +65,8 @@ int TestCurvature(int argc, char* argv[])
   TC_CHECK(check, crest->GetNumberOfLines() > 0);
   TC_CHECK(check, crest->GetCellData()->GetArray(tc::kStrength) != nullptr);
 
-  vtkSmartPointer<vtkRenderWindow> window = tctest::CurvatureScene(out, tc::kMeanCurvature, nullptr);
+  vtkSmartPointer<vtkRenderWindow> window =
+    tctest::CurvatureScene(out, tc::kMeanCurvature, nullptr);
   TC_CHECK(check, tctest::MatchesBaseline(argc, argv, window));
   return check.failures == 0 ? 0 : 1;
 }

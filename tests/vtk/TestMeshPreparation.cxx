@@ -46,14 +46,14 @@ vtkIdType CountNonManifoldEdges(vtkPolyData* mesh)
 vtkSmartPointer<vtkPolyData> MessyMesh(double badCoordinate = 0.0)
 {
   vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, 0);                // 0
-  pts->InsertNextPoint(1, 0, 0);                // 1
-  pts->InsertNextPoint(1, 1, badCoordinate);    // 2
-  pts->InsertNextPoint(0, 1, 0);                // 3
-  pts->InsertNextPoint(2, 0.5, 0);              // 4
-  pts->InsertNextPoint(1.5, 0.5, 1);            // 5
-  pts->InsertNextPoint(0, 0, 0);                // 6 = duplicate of 0
-  pts->InsertNextPoint(-1, 0.5, 0);             // 7
+  pts->InsertNextPoint(0, 0, 0);             // 0
+  pts->InsertNextPoint(1, 0, 0);             // 1
+  pts->InsertNextPoint(1, 1, badCoordinate); // 2
+  pts->InsertNextPoint(0, 1, 0);             // 3
+  pts->InsertNextPoint(2, 0.5, 0);           // 4
+  pts->InsertNextPoint(1.5, 0.5, 1);         // 5
+  pts->InsertNextPoint(0, 0, 0);             // 6 = duplicate of 0
+  pts->InsertNextPoint(-1, 0.5, 0);          // 7
   vtkNew<vtkCellArray> polys;
   const vtkIdType quad[4] = { 0, 1, 2, 3 };
   polys->InsertNextCell(4, quad);

@@ -146,9 +146,8 @@ int TestMeshReader(int argc, char* argv[])
   WriteText(tmp + "lines.vtk",
     "# vtk DataFile Version 3.0\nlines\nASCII\nDATASET POLYDATA\nPOINTS 2 float\n0 0 0 1 0 0\n"
     "LINES 1 3\n2 0 1\n");
-  for (const std::string name :
-    { "missing.ply", "empty.ply", "garbage.off", "truncated.off", "mesh.xyz", "broken.ply.gz",
-      "lines.vtk" })
+  for (const std::string name : { "missing.ply", "empty.ply", "garbage.off", "truncated.off",
+         "mesh.xyz", "broken.ply.gz", "lines.vtk" })
   {
     const ReadResult r = ReadFile(tmp + name);
     const bool refused = !r.error.empty() && r.polys <= 0;

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcTestUtilities.h"
 
+#include "tcColorMaps.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkGlyph3DMapper.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -16,14 +19,33 @@
 #include <vtkRegressionTestImage.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSphereSource.h>
 
-#include <algorithm>
-#include <cmath>
 #include <fstream>
-#include <vector>
 
 namespace tctest
 {
+namespace
+{
+/// Draws `lines` (if any) in black over the surface.
+void AddLines(vtkRenderer* renderer, vtkPolyData* lines, double width)
+{
+  if (!lines || lines->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(lines);
+  mapper->ScalarVisibilityOff();
+  mapper->SetResolveCoincidentTopologyToPolygonOffset();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.05, 0.05, 0.05);
+  actor->GetProperty()->SetLineWidth(width);
+  renderer->AddActor(actor);
+}
+}
+
 std::string Arg(int argc, char* argv[], const char* flag)
 {
   for (int i = 1; i + 1 < argc; ++i)
@@ -81,37 +103,9 @@ vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path)
 vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   vtkPolyData* surface, const char* array, vtkPolyData* lines)
 {
-  // Symmetric range holding 95% of the values, so that a few extreme vertices do not wash
-  // out the picture.
   vtkDataArray* values = surface->GetPointData()->GetArray(array);
-  std::vector<double> magnitudes(values ? values->GetNumberOfTuples() : 0);
-  for (size_t i = 0; i < magnitudes.size(); ++i)
-  {
-    magnitudes[i] = std::abs(values->GetComponent(static_cast<vtkIdType>(i), 0));
-  }
-  double limit = 1.0;
-  if (!magnitudes.empty())
-  {
-    const size_t k = std::min(magnitudes.size() - 1, magnitudes.size() * 95 / 100);
-    std::nth_element(magnitudes.begin(), magnitudes.begin() + k, magnitudes.end());
-    limit = magnitudes[k] > 0.0 ? magnitudes[k] : 1.0;
-  }
   vtkNew<vtkLookupTable> lut;
-  lut->SetNumberOfTableValues(256);
-  lut->SetTableRange(-limit, limit);
-  for (int i = 0; i < 256; ++i)
-  {
-    const double t = i / 255.0;
-    const double s = t < 0.5 ? t / 0.5 : (t - 0.5) / 0.5;
-    if (t < 0.5)
-    {
-      lut->SetTableValue(i, 0.23 + 0.77 * s, 0.30 + 0.70 * s, 0.75 + 0.25 * s, 1.0);
-    }
-    else
-    {
-      lut->SetTableValue(i, 1.0 - 0.29 * s, 1.0 - 0.98 * s, 1.0 - 0.85 * s, 1.0);
-    }
-  }
+  tcvtk::DivergingColors(lut, values);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(surface);
   mapper->SetScalarModeToUsePointFieldData();
@@ -124,18 +118,7 @@ vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.32, 0.34, 0.43);
   renderer->AddActor(actor);
-  if (lines && lines->GetNumberOfCells() > 0)
-  {
-    vtkNew<vtkPolyDataMapper> lineMapper;
-    lineMapper->SetInputData(lines);
-    lineMapper->ScalarVisibilityOff();
-    lineMapper->SetResolveCoincidentTopologyToPolygonOffset();
-    vtkNew<vtkActor> lineActor;
-    lineActor->SetMapper(lineMapper);
-    lineActor->GetProperty()->SetColor(0.05, 0.05, 0.05);
-    lineActor->GetProperty()->SetLineWidth(2.0);
-    renderer->AddActor(lineActor);
-  }
+  AddLines(renderer, lines, 2.0);
   renderer->ResetCamera();
   renderer->GetActiveCamera()->Azimuth(30);
   renderer->GetActiveCamera()->Elevation(20);
@@ -145,6 +128,58 @@ vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   window->SetMultiSamples(0);
   window->OffScreenRenderingOn();
   window->AddRenderer(renderer);
+  return window;
+}
+
+vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,
+  vtkPolyData* lines, vtkPolyData* points, const double viewport[4])
+{
+  vtkDataArray* values = surface->GetCellData()->GetArray(labels);
+  vtkNew<vtkLookupTable> lut;
+  tcvtk::LabelColors(lut, values);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->SetScalarModeToUseCellFieldData();
+  mapper->SelectColorArray(labels);
+  mapper->SetLookupTable(lut);
+  mapper->UseLookupTableScalarRangeOn();
+  mapper->SetScalarVisibility(values != nullptr);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  renderer->SetBackground(0.32, 0.34, 0.43);
+  renderer->AddActor(actor);
+  AddLines(renderer, lines, 3.0);
+  if (points && points->GetNumberOfPoints() > 0)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetRadius(0.01 * surface->GetLength());
+    vtkNew<vtkGlyph3DMapper> glyphs;
+    glyphs->SetInputData(points);
+    glyphs->SetSourceConnection(sphere->GetOutputPort());
+    glyphs->ScalingOff();
+    glyphs->ScalarVisibilityOff();
+    vtkNew<vtkActor> pointActor;
+    pointActor->SetMapper(glyphs);
+    pointActor->GetProperty()->SetColor(0.85, 0.1, 0.1);
+    renderer->AddActor(pointActor);
+  }
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Azimuth(30);
+  renderer->GetActiveCamera()->Elevation(20);
+  renderer->ResetCamera();
+  return renderer;
+}
+
+vtkSmartPointer<vtkRenderWindow> SideBySide(vtkRenderer* left, vtkRenderer* right)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetSize(800, 400);
+  window->SetMultiSamples(0);
+  window->OffScreenRenderingOn();
+  window->AddRenderer(left);
+  window->AddRenderer(right);
   return window;
 }
 

@@ -12,6 +12,7 @@
 
 class vtkPolyData;
 class vtkRenderWindow;
+class vtkRenderer;
 
 namespace tctest
 {
@@ -31,6 +32,15 @@ vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path);
 /// diverging colour map symmetric about 0, and `lines` (if any) drawn in black on top.
 vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   vtkPolyData* surface, const char* array, vtkPolyData* lines);
+
+/// A viewport-filling renderer for `surface` coloured by the integer cell array `labels`
+/// (golden-ratio hues), with `lines` in black and `points` as red spheres on top (each optional).
+/// `viewport` is (xmin, ymin, xmax, ymax) in the window.
+vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,
+  vtkPolyData* lines, vtkPolyData* points, const double viewport[4]);
+
+/// A 800x400 offscreen window with `left` and `right` renderers side by side.
+vtkSmartPointer<vtkRenderWindow> SideBySide(vtkRenderer* left, vtkRenderer* right);
 
 /// Compares the window with the baseline given by -V; true when it matches.
 bool MatchesBaseline(int argc, char* argv[], vtkRenderWindow* window, double threshold = 0.05);

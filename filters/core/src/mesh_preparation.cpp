@@ -259,7 +259,7 @@ uint64_t mix(uint64_t h)
 
 /// For items 0 .. n-1 in order, the first item equal to each (itself if none before it), with
 /// an open-addressing hash table: linear time, where sorting would cost n log n.
-template<typename HashFn, typename EqualFn>
+template <typename HashFn, typename EqualFn>
 std::vector<int32_t> firstEqual(int64_t n, const HashFn& hash, const EqualFn& equal)
 {
   uint64_t capacity = 16;

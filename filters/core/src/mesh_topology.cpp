@@ -92,7 +92,8 @@ VertexRing buildVertexRing(const EdgeTable& edges, int64_t numPoints)
   }
   return ring;
 }
-std::vector<int32_t> labelBoundaryEdges(const EdgeTable& edges, const std::vector<int32_t>& faceLabels)
+std::vector<int32_t> labelBoundaryEdges(
+  const EdgeTable& edges, const std::vector<int32_t>& faceLabels)
 {
   std::vector<int32_t> pairs;
   const int64_t ne = edges.numEdges();

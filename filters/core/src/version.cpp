@@ -20,6 +20,6 @@ const char* buildInfo()
 {
   return "Eigen " TC_STR(EIGEN_WORLD_VERSION) "." TC_STR(EIGEN_MAJOR_VERSION) "." TC_STR(
     EIGEN_MINOR_VERSION) "\nCGAL " TC_STR(CGAL_VERSION) "\nBoost " BOOST_LIB_VERSION
-                         "\nTBB " TBB_VERSION_STRING "\n";
+                                                        "\nTBB " TBB_VERSION_STRING "\n";
 }
 } // namespace tc

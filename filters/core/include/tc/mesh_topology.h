@@ -52,5 +52,6 @@ VertexRing buildVertexRing(const EdgeTable& edges, int64_t numPoints);
 /// Edges where a face label changes: every edge whose faces do not all have the same label.
 /// @param[in] faceLabels  #F labels (e.g. cluster ids)
 /// @return #B x 2 vertex ids, in edge-table order
-std::vector<int32_t> labelBoundaryEdges(const EdgeTable& edges, const std::vector<int32_t>& faceLabels);
+std::vector<int32_t> labelBoundaryEdges(
+  const EdgeTable& edges, const std::vector<int32_t>& faceLabels);
 } // namespace tc

@@ -17,8 +17,8 @@ namespace tc
 /// Calls body(i) for every i in [0, n), in parallel. `body` must be safe to call concurrently
 /// for different i. Progress is reported (and abort checked) about `steps` times.
 template <typename Body>
-void parallel_for(int64_t n, const Body& body, const Progress& progress = Progress(),
-  int steps = 32)
+void parallel_for(
+  int64_t n, const Body& body, const Progress& progress = Progress(), int steps = 32)
 {
   if (n <= 0)
   {

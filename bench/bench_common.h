@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file bench_common.h
+/// What every TriChart benchmark shares: timing a VTK algorithm, the default meshes, peak
+/// memory.
+#ifndef bench_common_h
+#define bench_common_h
+
+#include <vtkAlgorithm.h>
+#include <vtkTimerLog.h>
+
+#include <sys/resource.h>
+
+#include <string>
+#include <vector>
+
+namespace tcbench
+{
+/// Wall-clock seconds of algorithm->Update().
+inline double Seconds(vtkAlgorithm* algorithm)
+{
+  const double start = vtkTimerLog::GetUniversalTime();
+  algorithm->Update();
+  return vtkTimerLog::GetUniversalTime() - start;
+}
+
+/// The meshes named on the command line, or the 70K bunny and the 871K dragon scan.
+inline std::vector<std::string> Meshes(int argc, char* argv[])
+{
+  std::vector<std::string> files(argv + 1, argv + argc);
+  if (files.empty())
+  {
+    files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
+      std::string(TC_SHARED_DATA_DIR) + "/static_large/dragon_vrip.ply.gz" };
+  }
+  return files;
+}
+
+/// Peak resident memory of this process so far, in MB.
+inline double PeakMegabytes()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0; // Linux reports kilobytes
+}
+
+/// The file name without its folder.
+inline std::string BaseName(const std::string& path)
+{
+  return path.substr(path.find_last_of('/') + 1);
+}
+} // namespace tcbench
+
+#endif

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class tcSpectralClustering
+ * @brief Spectral clustering of the mesh's faces by curvature similarity (Feng et al. 2010,
+ * section 4.1, eq. 1-3), whose cluster boundaries are the candidates for feature lines.
+ *
+ * Faces are nodes of the dual graph, joined across shared edges and to nearby non-adjacent
+ * faces; eq. 3 gives low similarity across high |mean curvature| and across crest lines. The
+ * eigenvectors of D^-1/2 W D^-1/2 for the largest eigenvalues embed the faces and k-means
+ * (k-means++ seeding, fixed seed: deterministic) groups them. Meshes above NystromThreshold faces
+ * use the Nystrom approximation. Every connected component is clustered on its own.
+ *
+ * Input: tcCurvature's output (cell array FaceMeanCurvature; point array CrestVertex is used
+ * when present). Output port 0: the mesh with cell array ClusterId and field array Eigenvalues.
+ * Output port 1: the cluster boundaries as polylines over mesh edges.
+ */
+#ifndef tcSpectralClustering_h
+#define tcSpectralClustering_h
+
+#include "TriChartFeaturesModule.h"
+
+#include <vtkPolyDataAlgorithm.h>
+
+class TRICHARTFEATURES_EXPORT tcSpectralClustering : public vtkPolyDataAlgorithm
+{
+public:
+  static tcSpectralClustering* New();
+  vtkTypeMacro(tcSpectralClustering, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Number of clusters k over the whole mesh.
+  vtkSetClampMacro(NumberOfClusters, int, 1, 100000);
+  vtkGetMacro(NumberOfClusters, int);
+  ///@}
+
+  ///@{
+  /// Number of eigenvectors Ne of the embedding; 0 uses NumberOfClusters.
+  vtkSetClampMacro(NumberOfEigenvectors, int, 0, 1000);
+  vtkGetMacro(NumberOfEigenvectors, int);
+  ///@}
+
+  ///@{
+  /// Similarity factor (eq. 3's beta) between faces that a crest line separates.
+  vtkSetClampMacro(CrestBeta, double, 0.0, 1.0);
+  vtkGetMacro(CrestBeta, double);
+  ///@}
+
+  ///@{
+  /// Extra graph edges join faces closer than this times the mean adjacent-face distance.
+  vtkSetClampMacro(ExtraEdgeFactor, double, 0.0, 10.0);
+  vtkGetMacro(ExtraEdgeFactor, double);
+  ///@}
+
+  ///@{
+  /// Components with more faces than this use the Nystrom method.
+  vtkSetClampMacro(NystromThreshold, vtkIdType, 100, VTK_ID_MAX);
+  vtkGetMacro(NystromThreshold, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Number of faces sampled by the Nystrom method.
+  vtkSetClampMacro(NystromSamples, int, 10, 100000);
+  vtkGetMacro(NystromSamples, int);
+  ///@}
+
+  ///@{
+  /// k-means restarts (the best is kept).
+  vtkSetClampMacro(KMeansRestarts, int, 1, 1000);
+  vtkGetMacro(KMeansRestarts, int);
+  ///@}
+
+  ///@{
+  /// Seed of every random choice; equal seeds give identical clusters.
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+protected:
+  tcSpectralClustering();
+  ~tcSpectralClustering() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  tcSpectralClustering(const tcSpectralClustering&) = delete;
+  void operator=(const tcSpectralClustering&) = delete;
+
+  // Defaults are the core's (tc::SpectralClusteringOptions), set in the constructor.
+  int NumberOfClusters;
+  int NumberOfEigenvectors;
+  double CrestBeta;
+  double ExtraEdgeFactor;
+  vtkIdType NystromThreshold;
+  int NystromSamples;
+  int KMeansRestarts;
+  int Seed;
+};
+
+#endif
