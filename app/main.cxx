@@ -27,7 +27,7 @@ int main(int argc, char* argv[])
   QCommandLineOption screenshot(
     "screenshot", "Run up to the stage, save a PNG of the window and exit.", "file");
   QCommandLineOption stage("stage",
-    "Stage to show: input, preparation, curvature (default), clusters or features.", "name",
+    "Stage to show: input, preparation, curvature (default), clusters, features or base.", "name",
     "curvature");
   QCommandLineOption array("array", "Colour the surface by this array.", "name");
   parser.addOption(screenshot);
@@ -39,7 +39,7 @@ int main(int argc, char* argv[])
   if (stageIndex < 0)
   {
     std::cerr << "trichart-viewer: unknown stage '" << parser.value(stage).toStdString()
-              << "'; use input, preparation, curvature, clusters or features\n";
+              << "'; use input, preparation, curvature, clusters, features or base\n";
     return 2;
   }
 

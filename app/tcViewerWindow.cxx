@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcViewerWindow.h"
 
+#include "tcBaseComplex.h"
 #include "tcColorMaps.h"
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
@@ -40,6 +41,7 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkExtractEdges.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGlyph3DMapper.h>
 #include <vtkLookupTable.h>
@@ -60,9 +62,14 @@
 
 namespace
 {
-const char* const kStageNames[] = { "input", "preparation", "curvature", "clusters", "features" };
+const char* const kStageNames[] = { "input", "preparation", "curvature", "clusters", "features",
+  "base" };
 const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature", "Spectral clusters",
-  "Feature lines and corners" };
+  "Feature lines and corners", "Base complex (MAPS)" };
+static_assert(
+  sizeof(kStageNames) / sizeof(*kStageNames) == tcViewerWindow::StageCount, "one name per stage");
+static_assert(sizeof(kStageLabels) / sizeof(*kStageLabels) == tcViewerWindow::StageCount,
+  "one label per stage");
 
 /// A rainbow over the array's range, for arrays that are not signed curvatures.
 void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
@@ -88,6 +95,8 @@ tcViewerWindow::tcViewerWindow()
   this->Curvature->SetInputConnection(this->Preparation->GetOutputPort());
   this->Clustering->SetInputConnection(this->Curvature->GetOutputPort());
   this->Refinement->SetInputConnection(this->Clustering->GetOutputPort());
+  this->BaseComplex->SetInputConnection(this->Refinement->GetOutputPort());
+  this->BaseEdges->SetInputConnection(this->BaseComplex->GetOutputPort(0));
   for (int stage = 0; stage < StageCount; ++stage)
   {
     vtkAlgorithm* a = this->StageAlgorithm(stage);
@@ -103,7 +112,8 @@ tcViewerWindow::~tcViewerWindow() = default;
 vtkAlgorithm* tcViewerWindow::StageAlgorithm(int stage) const
 {
   vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature, this->Clustering,
-    this->Refinement };
+    this->Refinement, this->BaseComplex };
+  static_assert(sizeof(algorithms) / sizeof(*algorithms) == StageCount, "one filter per stage");
   return algorithms[stage];
 }
 
@@ -168,7 +178,7 @@ void tcViewerWindow::BuildUi()
   {
     this->Stages->addItem(label);
   }
-  this->Stages->setMaximumHeight(110);
+  this->Stages->setMaximumHeight(125);
   layout->addWidget(new QLabel("<b>Stages</b>", panel));
   layout->addWidget(this->Stages);
   this->Panels = new QStackedWidget(panel);
@@ -178,6 +188,7 @@ void tcViewerWindow::BuildUi()
   this->Panels->addWidget(this->BuildCurvaturePanel());
   this->Panels->addWidget(this->BuildClusteringPanel());
   this->Panels->addWidget(this->BuildRefinementPanel());
+  this->Panels->addWidget(this->BuildBaseComplexPanel());
   layout->addWidget(this->Panels);
   auto* apply = new QPushButton("Apply", panel);
   layout->addWidget(apply);
@@ -421,6 +432,23 @@ QWidget* tcViewerWindow::BuildRefinementPanel()
   return w;
 }
 
+QWidget* tcViewerWindow::BuildBaseComplexPanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  this->TargetFaces = new QSpinBox(w);
+  this->TargetFaces->setRange(4, 10000000);
+  this->TargetFaces->setValue(static_cast<int>(this->BaseComplex->GetTargetFaces()));
+  form->addRow("TargetFaces", this->TargetFaces);
+  this->MaxError = new QDoubleSpinBox(w);
+  this->MaxError->setRange(0.0, 1.0);
+  this->MaxError->setDecimals(6);
+  this->MaxError->setSingleStep(0.0001);
+  this->MaxError->setValue(this->BaseComplex->GetMaxError());
+  form->addRow("MaxError", this->MaxError);
+  return w;
+}
+
 void tcViewerWindow::PushParameters()
 {
   // Setting an unchanged value does not modify a filter, so only what changed re-runs.
@@ -443,6 +471,8 @@ void tcViewerWindow::PushParameters()
   this->Refinement->SetCurvatureThresholdScale(this->CurvatureThresholdScale->value());
   this->Refinement->SetCornerRings(this->CornerRings->value());
   this->Refinement->SetCornerFraction(this->CornerFraction->value());
+  this->BaseComplex->SetTargetFaces(this->TargetFaces->value());
+  this->BaseComplex->SetMaxError(this->MaxError->value());
 }
 
 bool tcViewerWindow::OpenFile(const QString& path, int stage)
@@ -519,10 +549,18 @@ bool tcViewerWindow::ShowStage(int stage)
   }
   vtkAlgorithm* algorithm = this->StageAlgorithm(stage);
   auto* surface = vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0));
-  // Crest lines, cluster boundaries and feature lines are each stage's port 1.
+  // Crest lines, cluster boundaries and feature lines are each stage's port 1; the base
+  // complex is drawn as its edges over the parameterized input mesh (its port 1).
   vtkPolyData* lines = stage >= CurvatureStage
     ? vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(1))
     : nullptr;
+  if (stage == BaseStage)
+  {
+    this->BaseEdges->Update();
+    surface = lines;
+    lines = this->BaseEdges->GetOutput();
+  }
+  this->SurfaceActor->GetProperty()->SetOpacity(stage == BaseStage ? 0.6 : 1.0);
   vtkPolyData* corners = stage == FeaturesStage ? this->Refinement->GetOutput(2) : nullptr;
   this->Display(surface, lines, corners);
 
@@ -539,7 +577,8 @@ bool tcViewerWindow::ShowStage(int stage)
     QString text = QString(report).replace(this->FileName, QFileInfo(this->FileName).fileName());
     info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
   }
-  const char* lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines" };
+  const char* const lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines",
+    "base edges" };
   if (lines)
   {
     info += QString("<br>%1 %2").arg(lines->GetNumberOfLines()).arg(lineNames[stage]);
@@ -601,10 +640,14 @@ void tcViewerWindow::FillArrayChoices(vtkPolyData* surface)
       }
     }
   }
-  // Each stage opens on its own result: clusters by ClusterId, curvature by mean curvature.
+  // Each stage opens on its own result: base faces, clusters, or mean curvature.
   QString choice = previous;
   const QString clusters = QString("cell:") + tc::kClusterId;
-  if (this->ColorBy->findText(clusters) >= 0)
+  if (this->CurrentStage == BaseStage)
+  {
+    choice = tc::kBaseFaceId;
+  }
+  else if (this->ColorBy->findText(clusters) >= 0)
   {
     choice = clusters;
   }

@@ -4,7 +4,7 @@
  * @brief The main window of trichart-viewer: a stage browser over the TriChart pipeline.
  *
  * The pipeline is tcMeshReader -> tcMeshPreparation -> tcCurvature -> tcSpectralClustering ->
- * tcFeatureRefinement. Selecting a stage shows
+ * tcFeatureRefinement -> tcBaseComplex. Selecting a stage shows
  * its output; its parameters are edited in the panel and "Apply" re-runs what changed (the
  * VTK pipeline's modified times decide). Long runs show progress and can be cancelled;
  * errors are shown in the window, which stays usable.
@@ -31,12 +31,14 @@ class QSpinBox;
 class QStackedWidget;
 class QVTKOpenGLNativeWidget;
 class tcCurvature;
+class tcBaseComplex;
 class tcFeatureRefinement;
 class tcSpectralClustering;
 class tcMeshPreparation;
 class tcMeshReader;
 class vtkActor;
 class vtkAlgorithm;
+class vtkExtractEdges;
 class vtkGenericOpenGLRenderWindow;
 class vtkObject;
 class vtkPolyData;
@@ -57,6 +59,7 @@ public:
     CurvatureStage,
     ClustersStage,
     FeaturesStage,
+    BaseStage,
     StageCount
   };
 
@@ -64,7 +67,7 @@ public:
   ~tcViewerWindow() override;
 
   /// Stage from its command-line name ("input", "preparation", "curvature", "clusters",
-  /// "features"); -1 if unknown.
+  /// "features", "base"); -1 if unknown.
   static int StageFromName(const QString& name);
 
   /// Opens a mesh and shows `stage`; false (with the error shown) on failure.
@@ -95,6 +98,7 @@ private:
   QWidget* BuildCurvaturePanel();
   QWidget* BuildClusteringPanel();
   QWidget* BuildRefinementPanel();
+  QWidget* BuildBaseComplexPanel();
   vtkAlgorithm* StageAlgorithm(int stage) const;
   void PushParameters();
   bool Run(vtkAlgorithm* algorithm, int port = 0);
@@ -111,6 +115,8 @@ private:
   vtkNew<tcCurvature> Curvature;
   vtkNew<tcSpectralClustering> Clustering;
   vtkNew<tcFeatureRefinement> Refinement;
+  vtkNew<tcBaseComplex> BaseComplex;
+  vtkNew<vtkExtractEdges> BaseEdges;
   vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkPolyDataMapper> SurfaceMapper;
@@ -153,6 +159,8 @@ private:
   QDoubleSpinBox* CurvatureThresholdScale = nullptr;
   QSpinBox* CornerRings = nullptr;
   QDoubleSpinBox* CornerFraction = nullptr;
+  QSpinBox* TargetFaces = nullptr;
+  QDoubleSpinBox* MaxError = nullptr;
 
   QString FileName;
   QString Error;

@@ -23,14 +23,16 @@ inline double Seconds(vtkAlgorithm* algorithm)
   return vtkTimerLog::GetUniversalTime() - start;
 }
 
-/// The meshes named on the command line, or the 70K bunny and the 871K dragon scan.
-inline std::vector<std::string> Meshes(int argc, char* argv[])
+/// The meshes named on the command line, or else the 70K bunny and `large` (a path under
+/// ../shared/data; the 871K dragon scan by default).
+inline std::vector<std::string> Meshes(
+  int argc, char* argv[], const char* large = "static_large/dragon_vrip.ply.gz")
 {
   std::vector<std::string> files(argv + 1, argv + argc);
   if (files.empty())
   {
     files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
-      std::string(TC_SHARED_DATA_DIR) + "/static_large/dragon_vrip.ply.gz" };
+      std::string(TC_SHARED_DATA_DIR) + "/" + large };
   }
   return files;
 }

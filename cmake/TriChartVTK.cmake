@@ -30,8 +30,10 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/Preparation/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Curvature/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Features/vtk.module
+    ${CMAKE_SOURCE_DIR}/filters/BaseComplex/vtk.module
   REQUEST_MODULES
     TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
+    TriChart::BaseComplex
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -48,7 +50,7 @@ vtk_module_build(
 
 # The filter modules that users see (the Common module is internal).
 set(TRICHART_FILTER_MODULES
-  TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features)
+  TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex)
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(

@@ -14,6 +14,7 @@ from .TriChartIO import *  # noqa: F401,F403
 from .TriChartPreparation import *  # noqa: F401,F403
 from .TriChartCurvature import *  # noqa: F401,F403
 from .TriChartFeatures import *  # noqa: F401,F403
+from .TriChartBaseComplex import *  # noqa: F401,F403
 
 try:
     from . import _config_build as _config  # running from a build tree
@@ -23,7 +24,7 @@ except ImportError:
 __version__ = _config.VERSION
 
 from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features,  # noqa: E402,F401
-                       build, TriChartError)
+                       base_complex, build, TriChartError)
 
 
 def plugin_path():

@@ -72,7 +72,8 @@ def cmd_build(args):
     start = time.perf_counter()
     try:
         result = build(args.mesh, args.output, progress=bar, image=not args.no_image,
-                       cluster_options={"number_of_clusters": args.clusters})
+                       cluster_options={"number_of_clusters": args.clusters},
+                       base_options={"target_faces": args.base_faces})
     finally:
         if bar:
             bar.close()
@@ -81,7 +82,8 @@ def cmd_build(args):
     print(f"{args.mesh}: {surface.GetNumberOfPoints()} points, "
           f"{surface.GetNumberOfCells()} triangles, {crest.GetNumberOfCells()} crest lines, "
           f"{result['feature_lines'].GetNumberOfCells()} feature lines, "
-          f"{result['corners'].GetNumberOfPoints()} corners ({seconds:.2f} s)")
+          f"{result['corners'].GetNumberOfPoints()} corners, "
+          f"{result['base_complex'].GetNumberOfPolys()} base triangles ({seconds:.2f} s)")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():
@@ -109,6 +111,8 @@ def main(argv=None):
     p.add_argument("-o", "--output", required=True, help="output folder")
     p.add_argument("--clusters", type=int, default=16,
                    help="number of spectral clusters (default 16)")
+    p.add_argument("--base-faces", type=int, default=100,
+                   help="target number of base-complex triangles (default 100)")
     p.add_argument("--no-image", action="store_true", help="do not render a PNG")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p = sub.add_parser("prepare", help="clean a mesh and write it as VTP")
@@ -122,7 +126,12 @@ def main(argv=None):
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()
 
+    from vtkmodules.vtkCommonCore import vtkLogger
+
     from .pipeline import TriChartError
+
+    # The command reports what matters itself; VTK's INFO lines would bury it.
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)
 
     try:
         return {"info": cmd_info, "build": cmd_build, "prepare": cmd_prepare}[args.command](args)

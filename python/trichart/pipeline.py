@@ -7,7 +7,8 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
-from . import TriChartCurvature, TriChartFeatures, TriChartIO, TriChartPreparation
+from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures, TriChartIO,
+               TriChartPreparation)
 
 
 class TriChartError(RuntimeError):
@@ -126,6 +127,18 @@ def refine_features(clusters, progress=None, **options):
     return _output(f, 0), _output(f, 1), _output(f, 2)
 
 
+def base_complex(features, progress=None, **options):
+    """tcBaseComplex on a closed manifold mesh (normally refine_features' output); returns
+    (base complex, input mesh with BaseFaceId and BaseBarycentric).
+
+    Options: target_faces, max_error.
+    """
+    f = _configure(TriChartBaseComplex.tcBaseComplex(), options)
+    f.SetInputData(features)
+    run(f, "base", progress)
+    return _output(f, 0), _output(f, 1)
+
+
 def write_vtp(mesh, path):
     """Write `mesh` as VTP; the file appears only when complete (temporary file, then rename)."""
     path = os.path.abspath(str(path))
@@ -147,14 +160,14 @@ def write_vtp(mesh, path):
 
 
 def build(path, outdir, progress=None, image=True, curvature_options=None,
-          cluster_options=None, feature_options=None):
+          cluster_options=None, feature_options=None, base_options=None):
     """The main job, as far as the pipeline goes today: read, prepare, curvature, spectral
-    clusters, feature refinement.
+    clusters, feature refinement, base complex with MAPS.
 
     Writes prepared.vtp, curvature.vtp, crest_lines.vtp, clusters.vtp, cluster_boundaries.vtp,
-    features.vtp, feature_lines.vtp, corners.vtp and (with image=True) curvature.png and
-    features.png into `outdir`; returns a dict with the outputs, the written paths and the
-    preparation report.
+    features.vtp, feature_lines.vtp, corners.vtp, base_complex.vtp, parameterized.vtp and (with
+    image=True) curvature.png, features.png and base_complex.png into `outdir`; returns a dict
+    with the outputs, the written paths and the preparation report.
     """
     os.makedirs(outdir, exist_ok=True)
     mesh = read_mesh(path, progress)
@@ -163,16 +176,20 @@ def build(path, outdir, progress=None, image=True, curvature_options=None,
     clustered, boundaries = cluster(surface, progress=progress, **(cluster_options or {}))
     features, lines, corners = refine_features(clustered, progress=progress,
                                                **(feature_options or {}))
+    base, parameterized = base_complex(features, progress=progress, **(base_options or {}))
     outputs = {"prepared": clean, "curvature": surface, "crest_lines": crest,
                "clusters": clustered, "cluster_boundaries": boundaries, "features": features,
-               "feature_lines": lines, "corners": corners}
+               "feature_lines": lines, "corners": corners, "base_complex": base,
+               "parameterized": parameterized}
     files = {name: write_vtp(data, os.path.join(outdir, f"{name}.vtp"))
              for name, data in outputs.items()}
     if image:
-        from .render import render_curvature, render_features
+        from .render import render_base_complex, render_curvature, render_features
 
         files["curvature_image"] = render_curvature(surface, crest,
                                                     os.path.join(outdir, "curvature.png"))
         files["features_image"] = render_features(features, lines, corners,
                                                   os.path.join(outdir, "features.png"))
+        files["base_complex_image"] = render_base_complex(
+            base, parameterized, os.path.join(outdir, "base_complex.png"))
     return dict(outputs, files=files, report=report, mesh=clean, surface=surface)

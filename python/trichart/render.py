@@ -172,3 +172,40 @@ def features_scene(features, lines=None, corners=None, size=(800, 600)):
 def render_features(features, lines, corners, path):
     """Save a picture of the feature stage (clusters, feature lines, corners) to `path`."""
     return write_png(features_scene(features, lines, corners), path)
+
+
+def base_complex_scene(base, parameterized, size=(800, 600)):
+    """The base complex's edges in black over the input mesh, whose vertices are coloured by
+    their base face (BaseFaceId)."""
+    from vtkmodules.vtkFiltersCore import vtkExtractEdges
+
+    ids = parameterized.GetPointData().GetArray("BaseFaceId")
+    count = int(ids.GetRange()[1]) + 1 if ids is not None else 1
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(parameterized)
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray("BaseFaceId")
+    mapper.SetLookupTable(cluster_colors(count))
+    mapper.UseLookupTableScalarRangeOn()
+    mapper.InterpolateScalarsBeforeMappingOff()  # blend the two labels, never invent a third
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetOpacity(0.6)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer.AddActor(actor)
+    edges = vtkExtractEdges()
+    edges.SetInputData(base)
+    edges.Update()
+    add_lines(renderer, edges.GetOutput(), 2.0)
+    renderer.ResetCamera()
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*size)
+    window.AddRenderer(renderer)
+    return window
+
+
+def render_base_complex(base, parameterized, path):
+    """Save a picture of the base-complex stage to `path`."""
+    return write_png(base_complex_scene(base, parameterized), path)

@@ -16,7 +16,8 @@ def viewer(*args):
     return subprocess.run([VIEWER, *map(str, args)], capture_output=True, text=True, timeout=300)
 
 
-@pytest.mark.parametrize("stage", ["input", "preparation", "curvature", "clusters", "features"])
+@pytest.mark.parametrize("stage", ["input", "preparation", "curvature", "clusters", "features",
+                                   "base"])
 def test_stage_screenshot_matches_baseline(stage, tmp_path):
     shot = tmp_path / f"TestViewer_{stage}.png"
     r = viewer(DATA / "meshes" / "bunny_npm.off", "--stage", stage, "--screenshot", shot)

@@ -20,7 +20,7 @@ def check(condition, what):
 LoadPlugin(plugin, remote=False, ns=globals())
 # paraview.simple names the functions after the proxies' labels.
 for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
-             "TriChartSpectralClustering", "TriChartFeatureRefinement"):
+             "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)
@@ -57,6 +57,12 @@ clustered = servermanager.Fetch(clusters)
 check(clustered.GetCellData().GetArray("ClusterId").GetRange() == (0.0, 11.0), "12 clusters")
 check(features.GetDataInformation(1).GetNumberOfCells() > 0, "feature lines on port 1")
 check(features.GetDataInformation(2).GetNumberOfPoints() > 0, "corners on port 2")
+
+base = TriChartBaseComplex(Input=features)  # noqa: F821
+check(base.TargetFaces == 100 and base.MaxError == 0.0, "base complex defaults")
+UpdatePipeline(proxy=base)
+check(0 < base.GetDataInformation(0).GetNumberOfCells() < 12946, "a coarse base complex")
+check(base.GetDataInformation(1).GetNumberOfPoints() == 6475, "every input vertex parameterized")
 
 print("paraview plugin test:", "FAILED" if failures else "passed")
 sys.exit(1 if failures else 0)

@@ -22,8 +22,8 @@ def test_build_writes_stages_and_a_picture(testing_data, tmp_path):
     r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", tmp_path)
     assert r.returncode == 0, r.stderr
     for name in ("prepared.vtp", "curvature.vtp", "crest_lines.vtp", "clusters.vtp",
-                 "features.vtp", "feature_lines.vtp", "corners.vtp", "curvature.png",
-                 "features.png"):
+                 "features.vtp", "feature_lines.vtp", "corners.vtp", "base_complex.vtp",
+                 "parameterized.vtp", "curvature.png", "features.png", "base_complex.png"):
         assert (tmp_path / name).stat().st_size > 0, name
     assert "3674 triangles" in r.stdout
     with open(tmp_path / "curvature.png", "rb") as f:
@@ -34,7 +34,7 @@ def test_build_shows_progress(testing_data, tmp_path):
     r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image",
             "--clusters", "6")
     assert r.returncode == 0, r.stderr
-    for stage in ("curvature", "clusters", "features"):
+    for stage in ("curvature", "clusters", "features", "base"):
         assert f"{stage}: 100%" in r.stderr
 
 

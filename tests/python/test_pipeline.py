@@ -9,7 +9,7 @@ from trichart.pipeline import TriChartError
 
 def test_filters_are_wrapped():
     for name in ("tcMeshReader", "tcMeshPreparation", "tcCurvature", "tcSpectralClustering",
-                 "tcFeatureRefinement"):
+                 "tcFeatureRefinement", "tcBaseComplex"):
         assert hasattr(trichart, name), name
     assert trichart.tcCurvature().GetNumberOfOutputPorts() == 2
 
@@ -64,7 +64,7 @@ def test_build_writes_every_stage(testing_data, tmp_path):
     result = trichart.build(testing_data / "meshes" / "cube.off", tmp_path / "out", image=False,
                             cluster_options={"number_of_clusters": 6})
     for name in ("prepared", "curvature", "crest_lines", "clusters", "cluster_boundaries",
-                 "features", "feature_lines", "corners"):
+                 "features", "feature_lines", "corners", "base_complex", "parameterized"):
         assert (tmp_path / "out" / f"{name}.vtp").stat().st_size > 0, name
     assert result["surface"].GetNumberOfPolys() == 12
     assert not list((tmp_path / "out").glob(".tmp-*"))

@@ -134,12 +134,21 @@ vtkSmartPointer<vtkRenderWindow> CurvatureScene(
 vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,
   vtkPolyData* lines, vtkPolyData* points, const double viewport[4])
 {
-  vtkDataArray* values = surface->GetCellData()->GetArray(labels);
+  // Labels are looked up in cell data first, then in point data.
+  vtkDataArray* cellValues = surface->GetCellData()->GetArray(labels);
+  vtkDataArray* values = cellValues ? cellValues : surface->GetPointData()->GetArray(labels);
   vtkNew<vtkLookupTable> lut;
   tcvtk::LabelColors(lut, values);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(surface);
-  mapper->SetScalarModeToUseCellFieldData();
+  if (cellValues)
+  {
+    mapper->SetScalarModeToUseCellFieldData();
+  }
+  else
+  {
+    mapper->SetScalarModeToUsePointFieldData();
+  }
   mapper->SelectColorArray(labels);
   mapper->SetLookupTable(lut);
   mapper->UseLookupTableScalarRangeOn();

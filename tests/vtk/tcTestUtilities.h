@@ -33,7 +33,8 @@ vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path);
 vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   vtkPolyData* surface, const char* array, vtkPolyData* lines);
 
-/// A viewport-filling renderer for `surface` coloured by the integer cell array `labels`
+/// A viewport-filling renderer for `surface` coloured by the integer cell (or else point) array
+/// `labels`
 /// (golden-ratio hues), with `lines` in black and `points` as red spheres on top (each optional).
 /// `viewport` is (xmin, ymin, xmax, ymax) in the window.
 vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,

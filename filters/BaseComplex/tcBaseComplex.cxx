@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcBaseComplex.h"
+
+#include "tcMeshConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/base_complex.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <numeric>
+
+vtkStandardNewMacro(tcBaseComplex);
+
+tcBaseComplex::tcBaseComplex()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+tcBaseComplex::~tcBaseComplex() = default;
+
+int tcBaseComplex::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // 1. Input and outputs.
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* base = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* parameterized = vtkPolyData::GetData(outputVector, 1);
+
+  // 2 and 3. Validate while converting; the feature arrays are optional.
+  tc::TriMesh mesh;
+  std::string error;
+  if (!input || !tcvtk::ToTriMesh(input, mesh, error))
+  {
+    vtkErrorMacro("Cannot build the base complex: " << (input ? error : "no input") << ".");
+    return 0;
+  }
+  std::vector<uint8_t> feature;
+  std::vector<uint8_t> corner;
+  std::vector<int32_t> featureEdges;
+  if (input->GetPointData()->GetArray(tc::kFeatureVertex) &&
+    !tcvtk::ReadIntArray(
+      input->GetPointData(), tc::kFeatureVertex, mesh.numPoints(), feature, error))
+  {
+    vtkErrorMacro("Cannot build the base complex: " << error << ".");
+    return 0;
+  }
+  if (input->GetPointData()->GetArray(tc::kCornerVertex) &&
+    !tcvtk::ReadIntArray(input->GetPointData(), tc::kCornerVertex, mesh.numPoints(), corner, error))
+  {
+    vtkErrorMacro("Cannot build the base complex: " << error << ".");
+    return 0;
+  }
+  if (vtkDataArray* edges = input->GetFieldData()->GetArray(tc::kFeatureEdges))
+  {
+    if (edges->GetNumberOfComponents() != 2)
+    {
+      vtkErrorMacro("Cannot build the base complex: field array " << tc::kFeatureEdges
+                                                                  << " must have 2 components.");
+      return 0;
+    }
+    featureEdges.resize(2 * static_cast<size_t>(edges->GetNumberOfTuples()));
+    for (vtkIdType e = 0; e < edges->GetNumberOfTuples(); ++e)
+    {
+      featureEdges[2 * e] = static_cast<int32_t>(edges->GetComponent(e, 0));
+      featureEdges[2 * e + 1] = static_cast<int32_t>(edges->GetComponent(e, 1));
+    }
+  }
+
+  // 4. Simplify with MAPS.
+  tc::BaseComplexOptions options;
+  options.targetFaces = this->TargetFaces;
+  options.maxError = this->MaxError;
+  tc::BaseComplexResult result;
+  try
+  {
+    result =
+      tc::buildBaseComplex(mesh, feature, corner, featureEdges, options, tcvtk::MakeProgress(this));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot build the base complex: " << e.what());
+    return 0;
+  }
+
+  // 5. The base complex over the input's points, and the parameterized input mesh.
+  tc::TriMesh complex;
+  complex.points.resize(3 * result.baseVertices.size());
+  for (size_t b = 0; b < result.baseVertices.size(); ++b)
+  {
+    std::copy_n(
+      &mesh.points[3 * static_cast<size_t>(result.baseVertices[b])], 3, &complex.points[3 * b]);
+  }
+  complex.triangles = result.baseTriangles;
+  tcvtk::FromTriMesh(complex, base);
+  std::vector<int32_t> faceIds(complex.numTriangles());
+  std::iota(faceIds.begin(), faceIds.end(), 0);
+  base->GetPointData()->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.baseVertices));
+  base->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseFaceId, faceIds));
+  vtkSmartPointer<vtkDataArray> sides = tcvtk::MakeArray(tc::kBaseEdgeIsFeature, 3,
+    std::vector<double>(result.baseEdgeIsFeature.begin(), result.baseEdgeIsFeature.end()));
+  base->GetCellData()->AddArray(sides);
+
+  parameterized->ShallowCopy(input);
+  parameterized->GetPointData()->AddArray(
+    tcvtk::MakeIntArray(tc::kBaseFaceId, result.vertexBaseFace));
+  parameterized->GetPointData()->AddArray(
+    tcvtk::MakeArray(tc::kBaseBarycentric, 3, result.vertexBarycentric));
+  parameterized->GetPointData()->SetActiveScalars(tc::kBaseFaceId);
+  return 1;
+}
+
+void tcBaseComplex::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TargetFaces: " << this->TargetFaces << "\n";
+  os << indent << "MaxError: " << this->MaxError << "\n";
+}
