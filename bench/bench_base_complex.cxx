@@ -8,8 +8,6 @@
 #include "bench_common.h"
 
 #include "tcBaseComplex.h"
-#include "tcMeshPreparation.h"
-#include "tcMeshReader.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -33,17 +31,7 @@ int main(int argc, char* argv[])
                "meshopt_simplify s, meshopt triangles/s, meshopt faces, ratio (meshopt/ours)\n";
   for (const std::string& file : files)
   {
-    if (!std::ifstream(file).good())
-    {
-      std::cout << file << ": absent, skipped\n";
-      continue;
-    }
-    vtkNew<tcMeshReader> reader;
-    reader->SetFileName(file.c_str());
-    vtkNew<tcMeshPreparation> prep;
-    prep->SetInputConnection(reader->GetOutputPort());
-    prep->Update();
-    vtkPolyData* mesh = prep->GetOutput();
+    vtkSmartPointer<vtkPolyData> mesh = tcbench::Prepared(file);
     const double triangles = static_cast<double>(mesh->GetNumberOfPolys());
 
     vtkNew<tcBaseComplex> base;

@@ -5,11 +5,19 @@
 #ifndef bench_common_h
 #define bench_common_h
 
+#include "tcMeshPreparation.h"
+#include "tcMeshReader.h"
+
 #include <vtkAlgorithm.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkTimerLog.h>
 
 #include <sys/resource.h>
 
+#include <fstream>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -24,7 +32,7 @@ inline double Seconds(vtkAlgorithm* algorithm)
 }
 
 /// The meshes named on the command line, or else the 70K bunny and `large` (a path under
-/// ../shared/data; the 871K dragon scan by default).
+/// ../shared/data; the 871K dragon scan by default). Absent files are reported and left out.
 inline std::vector<std::string> Meshes(
   int argc, char* argv[], const char* large = "static_large/dragon_vrip.ply.gz")
 {
@@ -34,7 +42,32 @@ inline std::vector<std::string> Meshes(
     files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
       std::string(TC_SHARED_DATA_DIR) + "/" + large };
   }
-  return files;
+  std::vector<std::string> present;
+  for (const std::string& file : files)
+  {
+    if (std::ifstream(file).good())
+    {
+      present.push_back(file);
+    }
+    else
+    {
+      std::cout << file << ": absent, skipped\n";
+    }
+  }
+  return present;
+}
+
+/// The mesh in `file`, read and prepared with the default options.
+inline vtkSmartPointer<vtkPolyData> Prepared(const std::string& file)
+{
+  vtkNew<tcMeshReader> reader;
+  reader->SetFileName(file.c_str());
+  vtkNew<tcMeshPreparation> prep;
+  prep->SetInputConnection(reader->GetOutputPort());
+  prep->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(prep->GetOutput());
+  return mesh;
 }
 
 /// Peak resident memory of this process so far, in MB.

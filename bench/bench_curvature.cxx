@@ -26,11 +26,6 @@ int main(int argc, char* argv[])
                "(prep+curv+crest), crest lines, vtkCurvatures s (mean+Gauss), ratio\n";
   for (const std::string& file : files)
   {
-    if (!std::ifstream(file).good())
-    {
-      std::cout << file << ": absent, skipped\n";
-      continue;
-    }
     vtkNew<tcMeshReader> reader;
     reader->SetFileName(file.c_str());
     const double read = tcbench::Seconds(reader);

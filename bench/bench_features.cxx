@@ -8,8 +8,6 @@
 
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
-#include "tcMeshPreparation.h"
-#include "tcMeshReader.h"
 #include "tcSpectralClustering.h"
 
 #include <vtkNew.h>
@@ -27,17 +25,9 @@ int main(int argc, char* argv[])
                "feature lines, corners, peak MB so far\n";
   for (const std::string& file : files)
   {
-    if (!std::ifstream(file).good())
-    {
-      std::cout << file << ": absent, skipped\n";
-      continue;
-    }
-    vtkNew<tcMeshReader> reader;
-    reader->SetFileName(file.c_str());
-    vtkNew<tcMeshPreparation> prep;
-    prep->SetInputConnection(reader->GetOutputPort());
+    vtkSmartPointer<vtkPolyData> mesh = tcbench::Prepared(file);
     vtkNew<tcCurvature> curvature;
-    curvature->SetInputConnection(prep->GetOutputPort());
+    curvature->SetInputData(mesh);
     curvature->Update();
     vtkNew<tcSpectralClustering> clustering;
     clustering->SetInputConnection(curvature->GetOutputPort());
@@ -46,7 +36,7 @@ int main(int argc, char* argv[])
     refinement->SetInputConnection(clustering->GetOutputPort());
     const double refine = tcbench::Seconds(refinement);
     const std::string name = tcbench::BaseName(file);
-    std::cout << name << ", " << prep->GetOutput()->GetNumberOfPolys() << ", "
+    std::cout << name << ", " << mesh->GetNumberOfPolys() << ", "
               << clustering->GetNumberOfClusters() << ", " << cluster << ", " << refine << ", "
               << cluster + refine << ", " << refinement->GetOutput(1)->GetNumberOfLines() << ", "
               << refinement->GetOutput(2)->GetNumberOfPoints() << ", " << tcbench::PeakMegabytes()

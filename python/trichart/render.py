@@ -55,6 +55,39 @@ def add_lines(renderer, lines, width):
     renderer.AddActor(actor)
 
 
+def _renderer():
+    """A renderer with TriChart's background."""
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.32, 0.34, 0.43)
+    return renderer
+
+
+def _window(renderer, size):
+    """An offscreen window of `size` showing `renderer`, with the camera reset."""
+    renderer.ResetCamera()
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*size)
+    window.AddRenderer(renderer)
+    return window
+
+
+def _label_mapper(data, array, cell):
+    """A mapper colouring `data` by the integer `array` (cell or point data)."""
+    values = (data.GetCellData() if cell else data.GetPointData()).GetArray(array)
+    count = int(values.GetRange()[1]) + 1 if values is not None else 1
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(data)
+    if cell:
+        mapper.SetScalarModeToUseCellFieldData()
+    else:
+        mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray(array)
+    mapper.SetLookupTable(cluster_colors(count))
+    mapper.UseLookupTableScalarRangeOn()
+    return mapper
+
+
 def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600)):
     """A render window with `surface` coloured by `array`, crest lines on top, and a legend."""
     lo, hi = symmetric_range(surface.GetPointData().GetArray(array))
@@ -67,8 +100,7 @@ def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600))
     mapper.UseLookupTableScalarRangeOn()
     actor = vtkActor()
     actor.SetMapper(mapper)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer = _renderer()
     renderer.AddActor(actor)
     add_lines(renderer, crest, 2.0)
     bar = vtkScalarBarActor()
@@ -78,12 +110,7 @@ def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600))
     bar.SetWidth(0.1)
     bar.SetHeight(0.6)
     renderer.AddActor2D(bar)
-    renderer.ResetCamera()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(*size)
-    window.AddRenderer(renderer)
-    return window
+    return _window(renderer, size)
 
 
 def write_png(window, path):
@@ -132,18 +159,10 @@ def features_scene(features, lines=None, corners=None, size=(800, 600)):
     from vtkmodules.vtkFiltersSources import vtkSphereSource
     from vtkmodules.vtkFiltersCore import vtkGlyph3D
 
-    ids = features.GetCellData().GetArray("ClusterId")
-    count = int(ids.GetRange()[1]) + 1 if ids is not None else 1
-    mapper = vtkPolyDataMapper()
-    mapper.SetInputData(features)
-    mapper.SetScalarModeToUseCellFieldData()
-    mapper.SelectColorArray("ClusterId")
-    mapper.SetLookupTable(cluster_colors(count))
-    mapper.UseLookupTableScalarRangeOn()
+    mapper = _label_mapper(features, "ClusterId", cell=True)
     actor = vtkActor()
     actor.SetMapper(mapper)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer = _renderer()
     renderer.AddActor(actor)
     add_lines(renderer, lines, 3.0)
     if corners is not None and corners.GetNumberOfPoints() > 0:
@@ -161,12 +180,7 @@ def features_scene(features, lines=None, corners=None, size=(800, 600)):
         corner_actor.SetMapper(corner_mapper)
         corner_actor.GetProperty().SetColor(0.85, 0.1, 0.1)
         renderer.AddActor(corner_actor)
-    renderer.ResetCamera()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(*size)
-    window.AddRenderer(renderer)
-    return window
+    return _window(renderer, size)
 
 
 def render_features(features, lines, corners, path):
@@ -179,31 +193,18 @@ def base_complex_scene(base, parameterized, size=(800, 600)):
     their base face (BaseFaceId)."""
     from vtkmodules.vtkFiltersCore import vtkExtractEdges
 
-    ids = parameterized.GetPointData().GetArray("BaseFaceId")
-    count = int(ids.GetRange()[1]) + 1 if ids is not None else 1
-    mapper = vtkPolyDataMapper()
-    mapper.SetInputData(parameterized)
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectColorArray("BaseFaceId")
-    mapper.SetLookupTable(cluster_colors(count))
-    mapper.UseLookupTableScalarRangeOn()
+    mapper = _label_mapper(parameterized, "BaseFaceId", cell=False)
     mapper.InterpolateScalarsBeforeMappingOff()  # blend the two labels, never invent a third
     actor = vtkActor()
     actor.SetMapper(mapper)
     actor.GetProperty().SetOpacity(0.6)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.32, 0.34, 0.43)
+    renderer = _renderer()
     renderer.AddActor(actor)
     edges = vtkExtractEdges()
     edges.SetInputData(base)
     edges.Update()
     add_lines(renderer, edges.GetOutput(), 2.0)
-    renderer.ResetCamera()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(*size)
-    window.AddRenderer(renderer)
-    return window
+    return _window(renderer, size)
 
 
 def render_base_complex(base, parameterized, path):

@@ -4,9 +4,7 @@
 // vertex has a base face and barycentrics that sum to 1, corners are base vertices; then the
 // base edges over the parameterized meshes against the baseline.
 #include "tcBaseComplex.h"
-#include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
-#include "tcSpectralClustering.h"
 #include "tcTestUtilities.h"
 
 #include "tc/array_names.h"
@@ -63,12 +61,7 @@ int TestBaseComplex(int argc, char* argv[])
     {
       return 1;
     }
-    vtkNew<tcCurvature> curvature;
-    curvature->SetInputData(mesh);
-    vtkNew<tcSpectralClustering> clustering;
-    clustering->SetInputConnection(curvature->GetOutputPort());
-    vtkNew<tcFeatureRefinement> refinement;
-    refinement->SetInputConnection(clustering->GetOutputPort());
+    vtkSmartPointer<tcFeatureRefinement> refinement = tctest::FeatureStages(mesh);
     vtkNew<tcBaseComplex> base;
     base->SetInputConnection(refinement->GetOutputPort());
     base->Update();

@@ -3,9 +3,7 @@
 // with their arrays, every feature-line point is flagged FeatureVertex on the mesh, corners
 // match CornerVertex; then refined clusters, feature lines and corners of both meshes against
 // the baseline.
-#include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
-#include "tcSpectralClustering.h"
 #include "tcTestUtilities.h"
 
 #include "tc/array_names.h"
@@ -31,13 +29,7 @@ int TestFeatureRefinement(int argc, char* argv[])
     {
       return 1;
     }
-    vtkNew<tcCurvature> curvature;
-    curvature->SetInputData(mesh);
-    vtkNew<tcSpectralClustering> clustering;
-    clustering->SetInputConnection(curvature->GetOutputPort());
-    vtkNew<tcFeatureRefinement> refinement;
-    refinement->SetInputConnection(clustering->GetOutputPort());
-    refinement->Update();
+    vtkSmartPointer<tcFeatureRefinement> refinement = tctest::FeatureStages(mesh);
     vtkPolyData* out = refinement->GetOutput();
     vtkPolyData* lines = refinement->GetOutput(1);
     vtkPolyData* corners = refinement->GetOutput(2);

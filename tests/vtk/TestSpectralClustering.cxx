@@ -2,7 +2,6 @@
 // tcSpectralClustering on the bundled fandisk and bunny: every face gets a cluster in range,
 // all clusters are used, eigenvalues are descending, two runs agree face for face, boundaries
 // come out on port 1; then clusters and boundaries of both meshes against the baseline.
-#include "tcCurvature.h"
 #include "tcSpectralClustering.h"
 #include "tcTestUtilities.h"
 
@@ -18,19 +17,6 @@
 
 #include <set>
 
-namespace
-{
-vtkSmartPointer<vtkPolyData> Curvature(vtkPolyData* mesh)
-{
-  vtkNew<tcCurvature> curvature;
-  curvature->SetInputData(mesh);
-  curvature->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(curvature->GetOutput());
-  return out;
-}
-}
-
 int TestSpectralClustering(int argc, char* argv[])
 {
   tctest::Checker check;
@@ -44,7 +30,7 @@ int TestSpectralClustering(int argc, char* argv[])
     {
       return 1;
     }
-    vtkSmartPointer<vtkPolyData> surface = Curvature(mesh);
+    vtkSmartPointer<vtkPolyData> surface = tctest::Curvature(mesh);
     vtkNew<tcSpectralClustering> clustering;
     clustering->SetInputData(surface);
     clustering->SetNumberOfClusters(12);

@@ -2,8 +2,11 @@
 #include "tcTestUtilities.h"
 
 #include "tcColorMaps.h"
+#include "tcCurvature.h"
+#include "tcFeatureRefinement.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
+#include "tcSpectralClustering.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -98,6 +101,26 @@ vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path)
   vtkSmartPointer<vtkPolyData> copy = vtkSmartPointer<vtkPolyData>::New();
   copy->ShallowCopy(prep->GetOutput());
   return copy;
+}
+
+vtkSmartPointer<vtkPolyData> Curvature(vtkPolyData* prepared)
+{
+  vtkNew<tcCurvature> curvature;
+  curvature->SetInputData(prepared);
+  curvature->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(curvature->GetOutput());
+  return out;
+}
+
+vtkSmartPointer<tcFeatureRefinement> FeatureStages(vtkPolyData* prepared)
+{
+  vtkNew<tcSpectralClustering> clustering;
+  clustering->SetInputData(Curvature(prepared));
+  auto refinement = vtkSmartPointer<tcFeatureRefinement>::New();
+  refinement->SetInputConnection(clustering->GetOutputPort());
+  refinement->Update();
+  return refinement;
 }
 
 vtkSmartPointer<vtkRenderWindow> CurvatureScene(

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <string>
 
+class tcFeatureRefinement;
 class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -27,6 +28,13 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path);
 
 /// Reads and prepares (tcMeshPreparation with defaults).
 vtkSmartPointer<vtkPolyData> ReadPrepared(const std::string& path);
+
+/// tcCurvature's output for a prepared mesh.
+vtkSmartPointer<vtkPolyData> Curvature(vtkPolyData* prepared);
+
+/// tcCurvature -> tcSpectralClustering -> tcFeatureRefinement (defaults) on a prepared mesh,
+/// updated; the refinement filter is returned, its three outputs ready.
+vtkSmartPointer<tcFeatureRefinement> FeatureStages(vtkPolyData* prepared);
 
 /// A 400x400 offscreen window showing `surface` coloured by point array `array` with a
 /// diverging colour map symmetric about 0, and `lines` (if any) drawn in black on top.
