@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 #include <vector>
@@ -38,6 +39,15 @@ ErrorStats statsOf(std::vector<double> errors)
   s.p95 = errors[static_cast<size_t>(0.95 * static_cast<double>(errors.size() - 1))];
   s.max = errors.back();
   return s;
+}
+
+/// Prints the measured errors, so that the test log carries the figures it checked.
+void printErrors(const char* surface, int64_t vertices, const ErrorStats& e1, const ErrorStats& e2)
+{
+  std::printf("[ figures  ] %s, %lld vertices: k1 error mean %.3f%% p95 %.3f%% max %.3f%%; "
+              "k2 error mean %.3f%% p95 %.3f%% max %.3f%%\n",
+    surface, static_cast<long long>(vertices), 100 * e1.mean, 100 * e1.p95, 100 * e1.max,
+    100 * e2.mean, 100 * e2.p95, 100 * e2.max);
 }
 
 /// Relative errors of |k1| and |k2| against the exact values, over the vertices `keep` accepts.
@@ -77,13 +87,16 @@ TEST(CurvatureSphere, RadiusTwoAtTwoDensitiesAndJittered)
   // unmodelled quartic term) alone is ~5%.
   const tctest::AnalyticMesh meshes[] = { tctest::icosphere(2.0, 4), tctest::icosphere(2.0, 5),
     tctest::jitteredSphere(2.0, 4, 0.3) };
-  for (const auto& m : meshes)
+  const char* names[] = { "sphere r=2", "sphere r=2", "sphere r=2 (jittered)" };
+  for (int i = 0; i < 3; ++i)
   {
-    SCOPED_TRACE(m.mesh.numPoints());
+    const tctest::AnalyticMesh& m = meshes[i];
+    SCOPED_TRACE(names[i]);
     const tc::CurvatureResult r = tc::computeCurvature(m.mesh);
     ErrorStats e1, e2;
     relativeErrors(
       m, r, allVertices, [](int64_t, int) { return 0.5; }, e1, e2);
+    printErrors(names[i], m.mesh.numPoints(), e1, e2);
     EXPECT_LE(e1.mean, 0.02);
     EXPECT_LE(e1.p95, 0.05);
     EXPECT_LE(e2.mean, 0.02);
@@ -103,6 +116,8 @@ TEST(CurvatureCylinder, RadiusOneAwayFromTheOpenEnds)
     ErrorStats e1, e2;
     relativeErrors(
       m, r, inside, [](int64_t, int) { return 1.0; }, e1, e2);
+    printErrors(
+      "cylinder r=1 (errors relative to 1/r = 1, so absolute)", m.mesh.numPoints(), e1, e2);
     EXPECT_LE(e1.mean, 0.02);
     EXPECT_LE(e1.p95, 0.05);
     EXPECT_LE(e2.max, 0.02); // k2 = 0: the error is absolute, per vertex
@@ -136,6 +151,7 @@ TEST(CurvatureTorus, ExactPrincipalCurvaturesAtTwoDensities)
     { return std::max(std::abs(m.k1[v]), std::abs(m.k2[v])); };
     ErrorStats e1, e2;
     relativeErrors(m, r, allVertices, scale, e1, e2);
+    printErrors("torus R=3 r=1 (relative to max |k|)", m.mesh.numPoints(), e1, e2);
     EXPECT_LE(e1.mean, 0.03);
     EXPECT_LE(e2.mean, 0.03);
   }
