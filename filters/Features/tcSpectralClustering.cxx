@@ -28,6 +28,7 @@ tcSpectralClustering::tcSpectralClustering()
   this->NumberOfEigenvectors = defaults.numEigenvectors;
   this->CrestBeta = defaults.crestBeta;
   this->ExtraEdgeFactor = defaults.extraEdgeFactor;
+  this->NormalSigma = defaults.exactNormalSigma;
   this->NystromThreshold = defaults.nystromThreshold;
   this->NystromSamples = defaults.nystromSamples;
   this->KMeansRestarts = defaults.kmeansRestarts;
@@ -71,6 +72,7 @@ int tcSpectralClustering::RequestData(
   options.numEigenvectors = this->NumberOfEigenvectors;
   options.crestBeta = this->CrestBeta;
   options.extraEdgeFactor = this->ExtraEdgeFactor;
+  options.exactNormalSigma = this->NormalSigma;
   options.nystromThreshold = this->NystromThreshold;
   options.nystromSamples = this->NystromSamples;
   options.kmeansRestarts = this->KMeansRestarts;
@@ -117,6 +119,7 @@ void tcSpectralClustering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfEigenvectors: " << this->NumberOfEigenvectors << "\n";
   os << indent << "CrestBeta: " << this->CrestBeta << "\n";
   os << indent << "ExtraEdgeFactor: " << this->ExtraEdgeFactor << "\n";
+  os << indent << "NormalSigma: " << this->NormalSigma << "\n";
   os << indent << "NystromThreshold: " << this->NystromThreshold << "\n";
   os << indent << "NystromSamples: " << this->NystromSamples << "\n";
   os << indent << "KMeansRestarts: " << this->KMeansRestarts << "\n";

@@ -16,7 +16,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <set>
@@ -419,6 +421,64 @@ TEST(SpectralClustering, ClusterBoundaryFollowsTheRidgeOfFigure5)
     largest = std::max(largest, count);
   }
   EXPECT_GE(largest, 0.95 * domeFaces) << "the hemisphere is split between clusters";
+}
+
+/// Fraction of the mesh edges whose faces meet at more than 45 degrees that separate two
+/// clusters.
+double sharpEdgesOnBoundaries(const tc::TriMesh& mesh, const std::vector<int32_t>& clusterId)
+{
+  auto normal = [&](int32_t f)
+  {
+    const int32_t* t = &mesh.triangles[3 * f];
+    double u[3], v[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      u[c] = mesh.points[3 * t[1] + c] - mesh.points[3 * t[0] + c];
+      v[c] = mesh.points[3 * t[2] + c] - mesh.points[3 * t[0] + c];
+    }
+    std::array<double, 3> n = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+      u[0] * v[1] - u[1] * v[0] };
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& x : n)
+    {
+      x /= l;
+    }
+    return n;
+  };
+  const tc::EdgeTable edges = tc::buildEdgeTable(mesh.triangles);
+  int sharp = 0, separating = 0;
+  for (int64_t e = 0; e < edges.numEdges(); ++e)
+  {
+    if (edges.valence(e) != 2)
+    {
+      continue;
+    }
+    const int32_t f = edges.edgeFaces[edges.faceOffsets[e]];
+    const int32_t g = edges.edgeFaces[edges.faceOffsets[e] + 1];
+    const auto a = normal(f), b = normal(g);
+    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < std::cos(M_PI / 4))
+    {
+      ++sharp;
+      separating += clusterId[f] != clusterId[g] ? 1 : 0;
+    }
+  }
+  return sharp > 0 ? static_cast<double>(separating) / sharp : 1.0;
+}
+
+TEST(SpectralClustering, NormalTermPutsFandiskBoundariesOnSharpEdges)
+{
+  const Prepared p = prepareFile(tctest::testingData("meshes/fandisk.off"));
+  tc::SpectralClusteringOptions o;
+  o.numClusters = 24;
+  const double paper = sharpEdgesOnBoundaries(p.mesh, cluster(p, o).clusterId);
+  o.exactNormalSigma = 0.05;
+  const double withNormals = sharpEdgesOnBoundaries(p.mesh, cluster(p, o).clusterId);
+  std::printf("fandisk, sharp edges on cluster boundaries: %.3f (eq. 3), %.3f (normal term)\n",
+    paper, withNormals);
+  EXPECT_GE(withNormals, 0.97);
+  EXPECT_GT(withNormals, paper);
+  o.exactNormalSigma = -1.0;
+  EXPECT_THROW(cluster(p, o), tc::InputError);
 }
 
 TEST(SpectralClustering, SeparateComponentsGetTheirOwnClusters)

@@ -63,3 +63,10 @@ def test_clustering_needs_curvature(testing_data):
 def test_refinement_needs_clusters(fandisk_curvature):
     with pytest.raises(TriChartError, match="ClusterId"):
         trichart.refine_features(fandisk_curvature)
+
+
+def test_normal_sigma_reaches_the_clustering(fandisk_curvature):
+    plain, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12)
+    creased, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12, normal_sigma=0.05)
+    assert (values(plain.GetCellData().GetArray("ClusterId"))
+            != values(creased.GetCellData().GetArray("ClusterId")))

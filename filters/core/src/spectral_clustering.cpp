@@ -928,8 +928,10 @@ struct Spectrum
 // its largest eigenpairs.
 Spectrum exactSpectrum(const std::vector<int32_t>& faces, const DualGraph& graph,
   const std::vector<int32_t>& localId, const std::vector<double>& curvExp, double invSigmaD,
-  double crestBeta, int ne, const Progress& progress)
+  double crestBeta, const std::vector<double>& normals, double normalSigma, int ne,
+  const Progress& progress)
 {
+  const double invNormalSigma = normalSigma > 0.0 ? 1.0 / normalSigma : 0.0;
   const int64_t n = static_cast<int64_t>(faces.size());
   LocalMatrix N;
   N.offsets.resize(n + 1);
@@ -953,9 +955,16 @@ Spectrum exactSpectrum(const std::vector<int32_t>& faces, const DualGraph& graph
       {
         const int32_t g = graph.ids[k];
         // Eq. 3: w = beta exp(-(|k_i| + |k_j|) / sigma_k) exp(-dist / sigma_d).
+        // With exactNormalSigma, times exp(-(1 - n_i . n_j) / exactNormalSigma).
         const double beta = graph.crest[k] ? crestBeta : 1.0;
+        const double bend = invNormalSigma > 0.0
+          ? (1.0 - normals[3 * f] * normals[3 * g] - normals[3 * f + 1] * normals[3 * g + 1] -
+              normals[3 * f + 2] * normals[3 * g + 2]) *
+            invNormalSigma
+          : 0.0;
         const double w = beta *
-          std::exp(std::max(kMinExponent, -(curvExp[f] + curvExp[g]) - graph.dist[k] * invSigmaD));
+          std::exp(
+            std::max(kMinExponent, -(curvExp[f] + curvExp[g]) - graph.dist[k] * invSigmaD - bend));
         N.ids[slot] = localId[g];
         N.values[slot] = w;
         sum += w;
@@ -1502,12 +1511,13 @@ void validate(const TriMesh& mesh, const std::vector<double>& faceMeanCurvature,
       "same mesh or an empty array");
   }
   if (o.numEigenvectors < 0 || !(o.crestBeta > 0.0) || !(o.extraEdgeFactor >= 0.0) ||
-    o.nystromSamples < 2 || o.nystromRank < 1 || !(o.nystromKernelScale > 0.0) ||
-    o.kmeansRestarts < 1 || o.kmeansIterations < 1 || o.kmeansSampleSize < 0)
+    !(o.exactNormalSigma >= 0.0) || o.nystromSamples < 2 || o.nystromRank < 1 ||
+    !(o.nystromKernelScale > 0.0) || o.kmeansRestarts < 1 || o.kmeansIterations < 1 ||
+    o.kmeansSampleSize < 0)
   {
     throw InputError(where +
       "invalid options: need numEigenvectors >= 0, crestBeta > 0, "
-      "extraEdgeFactor >= 0, nystromSamples >= 2, nystromRank >= 1, "
+      "extraEdgeFactor >= 0, exactNormalSigma >= 0, nystromSamples >= 2, nystromRank >= 1, "
       "nystromKernelScale > 0, kmeansRestarts >= 1, kmeansIterations >= 1, "
       "kmeansSampleSize >= 0");
   }
@@ -1722,8 +1732,8 @@ SpectralClusteringResult spectralClustering(const TriMesh& mesh,
       {
         localId[faces[i]] = static_cast<int32_t>(i);
       }
-      spectrum = exactSpectrum(
-        faces, graph, localId, curvExp, invSigmaD, options.crestBeta, neWanted, part.sub(0.0, 0.8));
+      spectrum = exactSpectrum(faces, graph, localId, curvExp, invSigmaD, options.crestBeta,
+        normals, options.exactNormalSigma, neWanted, part.sub(0.0, 0.8));
     }
     else
     {
