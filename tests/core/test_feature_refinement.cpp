@@ -283,12 +283,12 @@ void expectConsistent(
 }
 } // namespace
 
-TEST(FeatureRefinement, CubeOffHasTwelveLinesAndEightCorners)
+namespace
 {
-  // 12 triangles: every vertex is a corner, and its |H| estimate (0.86 to 1.15 here, from a
-  // neighbourhood that is the whole cube) says nothing about which; the lines' junctions do.
-  const tc::TriMesh mesh = loadOFF(tctest::testingData("meshes/cube.off"));
-  ASSERT_EQ(mesh.numTriangles(), 12);
+/// With the six sides of a unit cube as clusters, refinement keeps them, finds its 12 edges as
+/// lines and exactly its 8 corners.
+void expectCubeFeaturesFromSideLabels(const tc::TriMesh& mesh)
+{
   const Inputs in = inputsOf(mesh);
   const std::vector<int32_t> labels = boxSideLabels(mesh);
   const tc::FeatureRefinementResult r = refine(mesh, in, labels);
@@ -298,18 +298,20 @@ TEST(FeatureRefinement, CubeOffHasTwelveLinesAndEightCorners)
   expectCubeEdges(mesh, r);
   EXPECT_EQ(r.corners, cubeCorners(mesh, 1.0));
 }
+} // namespace
+
+TEST(FeatureRefinement, CubeOffHasTwelveLinesAndEightCorners)
+{
+  // 12 triangles: every vertex is a corner, and its |H| estimate (0.86 to 1.15 here, from a
+  // neighbourhood that is the whole cube) says nothing about which; the lines' junctions do.
+  const tc::TriMesh mesh = loadOFF(tctest::testingData("meshes/cube.off"));
+  ASSERT_EQ(mesh.numTriangles(), 12);
+  expectCubeFeaturesFromSideLabels(mesh);
+}
 
 TEST(FeatureRefinement, SubdividedCubeHasTwelveLinesAndEightCorners)
 {
-  const tc::TriMesh mesh = tctest::roundedBox(1.0, 0.0, 10).mesh;
-  const Inputs in = inputsOf(mesh);
-  const std::vector<int32_t> labels = boxSideLabels(mesh);
-  const tc::FeatureRefinementResult r = refine(mesh, in, labels);
-  expectConsistent(mesh, labels, r);
-  EXPECT_EQ(r.clusterId, labels);
-  EXPECT_EQ(r.numLines(), 12);
-  expectCubeEdges(mesh, r);
-  EXPECT_EQ(r.corners, cubeCorners(mesh, 1.0));
+  expectCubeFeaturesFromSideLabels(tctest::roundedBox(1.0, 0.0, 10).mesh);
 }
 
 TEST(FeatureRefinement, CornersFromCurvatureMaximaAloneOnSubdividedCube)

@@ -1523,6 +1523,38 @@ void validate(const TriMesh& mesh, const std::vector<double>& faceMeanCurvature,
   }
 }
 
+/// Sum, sum of squares and number of the distances of the edges (each counted once) of `graph`
+/// that leave the faces `use` marks.
+struct DistanceMoments
+{
+  double sum = 0.0;
+  double squares = 0.0;
+  double count = 0.0;
+};
+
+DistanceMoments distanceMoments(const DualGraph& graph, const std::vector<uint8_t>& use)
+{
+  DistanceMoments m;
+  const int64_t nf = static_cast<int64_t>(use.size());
+  for (int64_t f = 0; f < nf; ++f)
+  {
+    if (!use[f])
+    {
+      continue;
+    }
+    for (int64_t k = graph.offsets[f]; k < graph.offsets[f + 1]; ++k)
+    {
+      if (graph.ids[k] > f)
+      {
+        m.sum += graph.dist[k];
+        m.squares += graph.dist[k] * graph.dist[k];
+        m.count += 1.0;
+      }
+    }
+  }
+  return m;
+}
+
 // Population standard deviation; 0 for fewer than two values.
 double standardDeviation(double sum, double sumSquares, double count)
 {
@@ -1632,24 +1664,8 @@ SpectralClusteringResult spectralClustering(const TriMesh& mesh,
   double sigmaD = 0.0;
   if (anyExact)
   {
-    double sum = 0.0;
-    int64_t count = 0;
-    for (int64_t f = 0; f < nf; ++f)
-    {
-      if (!exactFace[f])
-      {
-        continue;
-      }
-      for (int64_t k = adjacent.offsets[f]; k < adjacent.offsets[f + 1]; ++k)
-      {
-        if (adjacent.ids[k] > f)
-        {
-          sum += adjacent.dist[k];
-          ++count;
-        }
-      }
-    }
-    const double radius = options.extraEdgeFactor * (count > 0 ? sum / count : 0.0);
+    const DistanceMoments near = distanceMoments(adjacent, exactFace);
+    const double radius = options.extraEdgeFactor * (near.count > 0 ? near.sum / near.count : 0.0);
     if (radius > 0.0)
     {
       graph = addExtraEdges(adjacent, exactFace, radius, progress.sub(0.05, 0.2));
@@ -1659,24 +1675,8 @@ SpectralClusteringResult spectralClustering(const TriMesh& mesh,
       graph = adjacent;
     }
     // Eq. 3: sigma_d is the standard deviation of dist over the edges of the graph used.
-    double ds = 0.0, dss = 0.0, dn = 0.0;
-    for (int64_t f = 0; f < nf; ++f)
-    {
-      if (!exactFace[f])
-      {
-        continue;
-      }
-      for (int64_t k = graph.offsets[f]; k < graph.offsets[f + 1]; ++k)
-      {
-        if (graph.ids[k] > f)
-        {
-          ds += graph.dist[k];
-          dss += graph.dist[k] * graph.dist[k];
-          dn += 1.0;
-        }
-      }
-    }
-    sigmaD = standardDeviation(ds, dss, dn);
+    const DistanceMoments used = distanceMoments(graph, exactFace);
+    sigmaD = standardDeviation(used.sum, used.squares, used.count);
   }
   // Equal distances everywhere (a regular mesh without extra edges): the factor is constant.
   const double invSigmaD = sigmaD > 0.0 ? 1.0 / sigmaD : 0.0;
