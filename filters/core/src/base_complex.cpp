@@ -7,6 +7,8 @@
 //  1. validateAndLink: corner table of the input (twins found through per-vertex lists, no
 //     sort), closed-manifold checks, feature flags. A vertex is pinned (never removed) at a
 //     corner, or where a number of feature edges other than 2 meet (junctions, curve ends).
+//     Internally vertices and faces are renumbered in a spatially coherent order (reorder());
+//     ties and "lowest-numbered" rules still compare input ids, so the result is the same.
 //  2. Quadrics (Garland-Heckbert, area-weighted, plus feature-edge planes) and a lazy priority
 //     queue of half-edge collapses u -> v, cheapest first, ties by vertex id (deterministic).
 //  3. prepare(): the rules of Feng et al. section 5.1 (no feature / non-feature collapse; a
@@ -181,13 +183,15 @@ struct HeapEntry
 {
   double cost;
   int32_t vertex;
+  int32_t rank; ///< input id of vertex
 };
-/// Smallest cost first; equal costs by vertex id, so the order never depends on heap internals.
+/// Smallest cost first; equal costs by input vertex id, so the order never depends on heap
+/// internals.
 struct HeapOrder
 {
   bool operator()(const HeapEntry& a, const HeapEntry& b) const
   {
-    return a.cost > b.cost || (a.cost == b.cost && a.vertex > b.vertex);
+    return a.cost > b.cost || (a.cost == b.cost && a.rank > b.rank);
   }
 };
 
@@ -196,6 +200,7 @@ struct Candidate
   double cost;
   int32_t target;
   int32_t halfEdge;
+  int32_t rank; ///< input id of target
 };
 
 /// Quadric-error half-edge collapses with the MAPS parameterization, over flat arrays.
@@ -227,6 +232,7 @@ public:
 private:
   void validateAndLink(const std::vector<uint8_t>& featureVertex,
     const std::vector<uint8_t>& cornerVertex, const std::vector<int32_t>& featureEdges);
+  void reorder();
   void initQuadrics();
   bool legal(int32_t u, int32_t h) const;
   void gatherCandidates(int32_t u);
@@ -263,18 +269,26 @@ private:
   Support supportOf(int32_t p) const;
   const StarChart& star(int32_t s, bool chart) const;
   bool inStar(int32_t s, const Support& sup, P2* at) const;
+  bool inStar(int32_t s, const Support sup[3], P2 at[3]) const;
   bool triangleValid(int64_t t, int32_t* starCentre = nullptr) const;
   int countInvalidAround(int32_t p) const;
   bool smooth(int32_t p);
   int64_t repairFlips(const Progress& progress);
 
-  V3 pos(int32_t v) const
-  {
-    return { Mesh_.points[3 * v], Mesh_.points[3 * v + 1], Mesh_.points[3 * v + 2] };
-  }
+  V3 pos(int32_t v) const { return { Points3_[3 * v], Points3_[3 * v + 1], Points3_[3 * v + 2] }; }
 
   const TriMesh& Mesh_;
   const BaseComplexOptions& Options_;
+
+  // The input in a spatially coherent order (vertices along a Morton curve, faces by their
+  // lowest vertex), so that the random access of the collapses and checks stays in cache.
+  // Every tie and every "lowest-numbered" rule compares input ids (VertexRank_), and every
+  // accumulation runs in input order, so the result does not depend on this order.
+  std::vector<double> Points3_;     ///< #V x 3 positions, internal order
+  std::vector<int32_t> Tri_;        ///< #F x 3 input triangles, internal ids
+  std::vector<int32_t> VertexRank_; ///< internal vertex -> input vertex id
+  std::vector<int32_t> VertexOf_;   ///< input vertex id -> internal vertex
+  std::vector<int32_t> FaceOf_;     ///< input face id -> internal face
   int32_t NumVertices_ = 0;
   int32_t NumFaces_ = 0;
   int64_t FaceCount_ = 0;
@@ -372,11 +386,11 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
   {
     throw InputError("buildBaseComplex: featureEdges must be a flat #E x 2 array");
   }
-  F_ = Mesh_.triangles;
   const int32_t nh = 3 * NumFaces_;
   for (int32_t f = 0; f < NumFaces_; ++f)
   {
-    const int32_t a = F_[3 * f], b = F_[3 * f + 1], c = F_[3 * f + 2];
+    const int32_t a = Mesh_.triangles[3 * f], b = Mesh_.triangles[3 * f + 1],
+                  c = Mesh_.triangles[3 * f + 2];
     if (a < 0 || b < 0 || c < 0 || a >= NumVertices_ || b >= NumVertices_ || c >= NumVertices_)
     {
       throw InputError(
@@ -389,6 +403,12 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     }
   }
 
+  this->reorder();
+  F_ = Tri_;
+  // Half-edge h of internal face FaceOf_[f], corner i, in input order (3 f + i): every loop whose
+  // order can show (lists, sums, error messages) runs in this order.
+  auto inputHe = [&](int32_t h) { return 3 * FaceOf_[h / 3] + h % 3; };
+
   // Outgoing half-edges of every vertex in CSR form, then twins by scanning the (short) list of
   // the other end: O(#F * valence), no sort.
   std::vector<int32_t>& offsets = InOffsets_;
@@ -397,13 +417,16 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
   {
     ++offsets[F_[h] + 1];
   }
-  for (int32_t v = 0; v < NumVertices_; ++v)
+  for (int32_t input = 0; input < NumVertices_; ++input)
   {
-    if (offsets[v + 1] == 0)
+    if (offsets[VertexOf_[input] + 1] == 0)
     {
-      throw InputError("buildBaseComplex: point " + std::to_string(v) +
+      throw InputError("buildBaseComplex: point " + std::to_string(input) +
         " is in no triangle; run tcMeshPreparation to drop unused points");
     }
+  }
+  for (int32_t v = 0; v < NumVertices_; ++v)
+  {
     offsets[v + 1] += offsets[v];
   }
   std::vector<int32_t>& outHe = InHe_;
@@ -411,8 +434,9 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
   std::vector<int32_t> outTarget(nh);
   {
     std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (int32_t h = 0; h < nh; ++h)
+    for (int32_t i = 0; i < nh; ++i)
     {
+      const int32_t h = inputHe(i);
       const int32_t slot = fill[F_[h]]++;
       outHe[slot] = h;
       outTarget[slot] = F_[nextHe(h)];
@@ -433,29 +457,33 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     return found;
   };
   Opp_.assign(nh, -1);
-  for (int32_t h = 0; h < nh; ++h)
+  for (int32_t i = 0; i < nh; ++i)
   {
+    const int32_t h = inputHe(i);
     const int32_t a = F_[h], b = F_[nextHe(h)];
     int same = 0, twin = 0;
     findHe(a, b, &same);
     const int32_t o = findHe(b, a, &twin);
+    auto edge = [&]
+    { return "(" + std::to_string(VertexRank_[a]) + ", " + std::to_string(VertexRank_[b]) + ")"; };
     if (same != 1 || twin > 1)
     {
-      throw InputError("buildBaseComplex: edge (" + std::to_string(a) + ", " + std::to_string(b) +
-        ") has more than 2 triangles or inconsistent orientation; run tcMeshPreparation with "
+      throw InputError("buildBaseComplex: edge " + edge() +
+        " has more than 2 triangles or inconsistent orientation; run tcMeshPreparation with "
         "splitting and orientation");
     }
     if (twin == 0)
     {
-      throw InputError("buildBaseComplex: edge (" + std::to_string(a) + ", " + std::to_string(b) +
-        ") is on a boundary; the base complex needs a closed surface");
+      throw InputError("buildBaseComplex: edge " + edge() +
+        " is on a boundary; the base complex needs a closed surface");
     }
     Opp_[h] = o;
   }
   Out_.resize(NumVertices_);
   Valence_.resize(NumVertices_);
-  for (int32_t v = 0; v < NumVertices_; ++v)
+  for (int32_t input = 0; input < NumVertices_; ++input)
   {
+    const int32_t v = VertexOf_[input];
     const int32_t start = outHe[offsets[v]];
     const int32_t valence = offsets[v + 1] - offsets[v];
     int32_t h = start, steps = 0;
@@ -466,7 +494,7 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     } while (h != start && steps <= valence);
     if (steps != valence)
     {
-      throw InputError("buildBaseComplex: the triangles around point " + std::to_string(v) +
+      throw InputError("buildBaseComplex: the triangles around point " + std::to_string(input) +
         " form more than one fan; run tcMeshPreparation with splitting");
     }
     Out_[v] = start;
@@ -480,18 +508,19 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
   std::vector<int32_t> featureCount(NumVertices_, 0);
   for (size_t i = 0; i < featureEdges.size(); i += 2)
   {
-    const int32_t a = featureEdges[i], b = featureEdges[i + 1];
-    if (a < 0 || b < 0 || a >= NumVertices_ || b >= NumVertices_)
+    const int32_t ia = featureEdges[i], ib = featureEdges[i + 1];
+    if (ia < 0 || ib < 0 || ia >= NumVertices_ || ib >= NumVertices_)
     {
       throw InputError(
         "buildBaseComplex: feature edge " + std::to_string(i / 2) + " refers to a missing point");
     }
+    const int32_t a = VertexOf_[ia], b = VertexOf_[ib];
     int count = 0;
     const int32_t h = findHe(a, b, &count);
     if (h < 0)
     {
-      throw InputError("buildBaseComplex: feature edge (" + std::to_string(a) + ", " +
-        std::to_string(b) + ") is not an edge of the mesh");
+      throw InputError("buildBaseComplex: feature edge (" + std::to_string(ia) + ", " +
+        std::to_string(ib) + ") is not an edge of the mesh");
     }
     if (!FeatureHe_[h])
     {
@@ -504,9 +533,84 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
   Pinned_.assign(NumVertices_, 0);
   for (int32_t v = 0; v < NumVertices_; ++v)
   {
-    Feature_[v] = (!featureVertex.empty() && featureVertex[v]) || featureCount[v] > 0;
+    const int32_t input = VertexRank_[v];
+    Feature_[v] = (!featureVertex.empty() && featureVertex[input]) || featureCount[v] > 0;
     Pinned_[v] =
-      (!cornerVertex.empty() && cornerVertex[v]) || (Feature_[v] && featureCount[v] != 2);
+      (!cornerVertex.empty() && cornerVertex[input]) || (Feature_[v] && featureCount[v] != 2);
+  }
+}
+
+/// Vertices sorted along a Morton (Z-order) curve of their positions, faces by their lowest
+/// internal vertex (a stable counting sort), ties by input id.
+void Simplifier::reorder()
+{
+  const int32_t nv = NumVertices_, nf = NumFaces_;
+  const std::vector<double>& P = Mesh_.points;
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (int c = 0; c < 3; ++c)
+  {
+    lo[c] = hi[c] = P[c];
+  }
+  for (int32_t v = 1; v < nv; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], P[3 * v + c]);
+      hi[c] = std::max(hi[c], P[3 * v + c]);
+    }
+  }
+  std::vector<std::pair<uint64_t, int32_t>> key(nv);
+  for (int32_t v = 0; v < nv; ++v)
+  {
+    uint32_t q[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double t = hi[c] > lo[c] ? (P[3 * v + c] - lo[c]) / (hi[c] - lo[c]) : 0.0;
+      q[c] = t > 0 ? static_cast<uint32_t>(std::min(t, 1.0) * 2097151.0) : 0u;
+    }
+    uint64_t code = 0;
+    for (int b = 20; b >= 0; --b)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        code = (code << 1) | ((q[c] >> b) & 1u);
+      }
+    }
+    key[v] = { code, v };
+  }
+  std::sort(key.begin(), key.end());
+  VertexRank_.resize(nv);
+  VertexOf_.resize(nv);
+  Points3_.resize(3 * static_cast<size_t>(nv));
+  for (int32_t v = 0; v < nv; ++v)
+  {
+    const int32_t input = key[v].second;
+    VertexRank_[v] = input;
+    VertexOf_[input] = v;
+    std::copy(&P[3 * input], &P[3 * input] + 3, &Points3_[3 * v]);
+  }
+  std::vector<int32_t> first(nv + 1, 0);
+  std::vector<int32_t> lowest(nf);
+  for (int32_t f = 0; f < nf; ++f)
+  {
+    const int32_t* t = &Mesh_.triangles[3 * f];
+    lowest[f] = std::min(VertexOf_[t[0]], std::min(VertexOf_[t[1]], VertexOf_[t[2]]));
+    ++first[lowest[f] + 1];
+  }
+  for (int32_t v = 0; v < nv; ++v)
+  {
+    first[v + 1] += first[v];
+  }
+  FaceOf_.resize(nf);
+  Tri_.resize(3 * static_cast<size_t>(nf));
+  for (int32_t input = 0; input < nf; ++input)
+  {
+    const int32_t f = first[lowest[input]]++;
+    FaceOf_[input] = f;
+    for (int c = 0; c < 3; ++c)
+    {
+      Tri_[3 * f + c] = VertexOf_[Mesh_.triangles[3 * input + c]];
+    }
   }
 }
 
@@ -526,8 +630,9 @@ void Simplifier::initQuadrics()
   // Area-weighted plane quadrics (Garland and Heckbert 1997, section 5): the sum then measures
   // squared distance integrated over the merged surface, so small regions go first and the
   // base triangles come out of similar size.
-  for (int32_t f = 0; f < NumFaces_; ++f)
+  for (int32_t input = 0; input < NumFaces_; ++input)
   {
+    const int32_t f = FaceOf_[input];
     const V3 a = pos(F_[3 * f]), b = pos(F_[3 * f + 1]), c = pos(F_[3 * f + 2]);
     V3 n = cross(sub(b, a), sub(c, a));
     const double len = norm(n);
@@ -549,8 +654,9 @@ void Simplifier::initQuadrics()
   // (Garland and Heckbert's boundary constraint), weighted like the area it stands for, so a
   // curve simplifies first where it is straight.
   const double weight = Options_.featureWeight;
-  for (int32_t h = 0; h < 3 * NumFaces_ && weight > 0; ++h)
+  for (int32_t i = 0; i < 3 * NumFaces_ && weight > 0; ++i)
   {
+    const int32_t h = 3 * FaceOf_[i / 3] + i % 3;
     if (!FeatureHe_[h])
     {
       continue;
@@ -596,13 +702,25 @@ void Simplifier::gatherCandidates(int32_t u)
     if (this->legal(u, h))
     {
       const int32_t v = F_[nextHe(h)];
-      Candidates_.push_back({ evalSum(Quadric_[u], Quadric_[v], this->pos(v)), v, h });
+      Candidates_.push_back(
+        { evalSum(Quadric_[u], Quadric_[v], this->pos(v)), v, h, VertexRank_[v] });
     }
     h = Opp_[prevHe(h)];
   } while (h != start);
-  std::sort(Candidates_.begin(), Candidates_.end(),
-    [](const Candidate& a, const Candidate& b)
-    { return a.cost < b.cost || (a.cost == b.cost && a.target < b.target); });
+  // Insertion sort: a handful of candidates, all with distinct ranks.
+  for (size_t i = 1; i < Candidates_.size(); ++i)
+  {
+    const Candidate c = Candidates_[i];
+    size_t j = i;
+    for (; j > 0 &&
+         (c.cost < Candidates_[j - 1].cost ||
+           (c.cost == Candidates_[j - 1].cost && c.rank < Candidates_[j - 1].rank));
+         --j)
+    {
+      Candidates_[j] = Candidates_[j - 1];
+    }
+    Candidates_[j] = c;
+  }
 }
 
 /// Lazy priority queue: a vertex has at most one live entry (its key in Key_), and a key may be
@@ -612,7 +730,7 @@ void Simplifier::push(int32_t u, double cost)
   if (cost < Key_[u])
   {
     Key_[u] = cost;
-    Heap_.push({ cost, u });
+    Heap_.push({ cost, u, VertexRank_[u] });
   }
 }
 
@@ -1001,7 +1119,9 @@ void Simplifier::apply(int32_t u)
     for (int32_t p = Head_[f]; p >= 0; p = Next_[p])
     {
       Points_.emplace_back(p, j);
-      OldBary_.insert(OldBary_.end(), &PointBary_[3 * p], &PointBary_[3 * p] + 3);
+      OldBary_.push_back(PointBary_[3 * p]);
+      OldBary_.push_back(PointBary_[3 * p + 1]);
+      OldBary_.push_back(PointBary_[3 * p + 2]);
     }
     Head_[f] = -1;
   }
@@ -1203,7 +1323,7 @@ bool Simplifier::movedTrianglesValid()
       {
         continue;
       }
-      const int32_t p = Mesh_.triangles[nextHe(h)], q = Mesh_.triangles[prevHe(h)];
+      const int32_t p = Tri_[nextHe(h)], q = Tri_[prevHe(h)];
       if (Removed_[p] && Removed_[q] && PointFace_[p] == PointFace_[q] && inFaceWith(p, x))
       {
         continue;
@@ -1252,7 +1372,7 @@ BaseComplexResult Simplifier::run(const Progress& progress)
       if (!Candidates_.empty())
       {
         Key_[u] = Candidates_.front().cost;
-        entries.push_back({ Key_[u], u });
+        entries.push_back({ Key_[u], u, VertexRank_[u] });
       }
     }
     Heap_ = decltype(Heap_)(HeapOrder(), std::move(entries));
@@ -1449,6 +1569,57 @@ bool Simplifier::inStar(int32_t s, const Support& sup, P2* at) const
   return true;
 }
 
+/// inStar for the three corners of a triangle at once: the ring is looked up once per support
+/// vertex, and the chart is only computed when all three are in the closed star.
+bool Simplifier::inStar(int32_t s, const Support sup[3], P2 at[3]) const
+{
+  const StarChart& ring = this->star(s, false);
+  const int32_t* ids = ring.ring.data();
+  const int d = static_cast<int>(ring.ring.size());
+  int index[3][3];
+  for (int j = 0; j < 3; ++j)
+  {
+    int n = 0, found[3];
+    for (int i = 0; i < sup[j].n; ++i)
+    {
+      index[j][i] = -1;
+      if (sup[j].v[i] == s)
+      {
+        continue;
+      }
+      int r = 0;
+      while (r < d && ids[r] != sup[j].v[i])
+      {
+        ++r;
+      }
+      if (r == d)
+      {
+        return false;
+      }
+      index[j][i] = found[n++] = r;
+    }
+    if (n == 3 ||
+      (n == 2 && (found[1] - found[0] + d) % d != 1 && (found[0] - found[1] + d) % d != 1))
+    {
+      return false;
+    }
+  }
+  const StarChart& star = this->star(s, true);
+  for (int j = 0; j < 3; ++j)
+  {
+    at[j] = { 0.0, 0.0 };
+    for (int i = 0; i < sup[j].n; ++i)
+    {
+      if (index[j][i] >= 0)
+      {
+        at[j].x += sup[j].w[i] * star.z[index[j][i]].x;
+        at[j].y += sup[j].w[i] * star.z[index[j][i]].y;
+      }
+    }
+  }
+  return true;
+}
+
 /// Whether input triangle t keeps its orientation in the base domain, drawn with straight sides
 /// in the chart the later stages use for it (Feng et al. section 5.1: base triangles unfolded
 /// into the plane): corners in one closed base face (a corner's face, or the face their
@@ -1472,11 +1643,17 @@ bool Simplifier::triangleValid(int64_t t, int32_t* starCentre) const
       (p[0].x - p[2].x) * (p[0].x - p[2].x) + (p[0].y - p[2].y) * (p[0].y - p[2].y);
     return a > kMargin * s;
   };
-  // Fast path, by far the most common case on a coarse base complex: three removed vertices
-  // stored in the same face (the rule below would pick that face's barycentric plane too).
+  // Fast paths. Three base vertices that still make face t, as in the input (a fine base
+  // complex): the rule below would find t and draw it as its own barycentric triangle, area 1/2.
+  // Three removed vertices stored in the same face, by far the most common case on a coarse base
+  // complex: the rule below would pick that face's barycentric plane too.
   {
-    const int32_t a = Mesh_.triangles[3 * t], b = Mesh_.triangles[3 * t + 1],
-                  c = Mesh_.triangles[3 * t + 2];
+    const int32_t a = Tri_[3 * t], b = Tri_[3 * t + 1], c = Tri_[3 * t + 2];
+    if (!Removed_[a] && !Removed_[b] && !Removed_[c] && FaceAlive_[t] && F_[3 * t] == a &&
+      F_[3 * t + 1] == b && F_[3 * t + 2] == c)
+    {
+      return true;
+    }
     if (Removed_[a] && Removed_[b] && Removed_[c] && PointFace_[a] == PointFace_[b] &&
       PointFace_[a] == PointFace_[c])
     {
@@ -1491,55 +1668,98 @@ bool Simplifier::triangleValid(int64_t t, int32_t* starCentre) const
   int na = 0;
   for (int i = 0; i < 3; ++i)
   {
-    sup[i] = this->supportOf(Mesh_.triangles[3 * t + i]);
+    sup[i] = this->supportOf(Tri_[3 * t + i]);
     for (int j = 0; j < sup[i].n; ++j)
     {
       all[na++] = sup[i].v[j];
     }
   }
-  // Sorted, without repeats (insertion sort: at most 9 ids).
+  // Sorted by input id, without repeats (insertion sort: at most 9 ids).
   {
+    // Swapped down one step at a time: a shifting loop would become a call to memmove.
+    int32_t rank[9];
     int n = 0;
     for (int i = 0; i < na; ++i)
     {
-      const int32_t x = all[i];
-      int j = n;
-      while (j > 0 && all[j - 1] > x)
+      const int32_t x = all[i], r = VertexRank_[x];
+      bool repeat = false;
+      for (int m = 0; m < n; ++m)
       {
-        --j;
+        repeat |= rank[m] == r;
       }
-      if (j > 0 && all[j - 1] == x)
+      if (repeat)
       {
         continue;
       }
-      std::copy_backward(all + j, all + n, all + n + 1);
-      all[j] = x;
+      all[n] = x;
+      rank[n] = r;
+      for (int j = n; j > 0 && rank[j - 1] > rank[j]; --j)
+      {
+        std::swap(all[j - 1], all[j]);
+        std::swap(rank[j - 1], rank[j]);
+      }
       ++n;
     }
     na = n;
   }
   auto faceHas = [&](int32_t f, int32_t v)
   { return F_[3 * f] == v || F_[3 * f + 1] == v || F_[3 * f + 2] == v; };
-
-  // The face that holds every image: a corner's face, or the base face spanned by the union.
-  int32_t faces[4] = { sup[0].face, sup[1].face, sup[2].face, -1 };
-  if (na == 3)
+  // Whether face f holds every image: na <= 3 distinct vertices, all among its corners.
+  auto holdsAll = [&](int32_t f)
   {
-    const int32_t start = Out_[all[0]];
-    int32_t h = start;
-    do
+    if (na > 3)
     {
-      if (faceHas(h / 3, all[1]) && faceHas(h / 3, all[2]))
+      return false;
+    }
+    const int32_t c0 = F_[3 * f], c1 = F_[3 * f + 1], c2 = F_[3 * f + 2];
+    for (int i = 0; i < na; ++i)
+    {
+      if (all[i] != c0 && all[i] != c1 && all[i] != c2)
       {
-        faces[3] = h / 3;
+        return false;
       }
-      h = Opp_[prevHe(h)];
-    } while (h != start);
+    }
+    return true;
+  };
+
+  // The face that holds every image: a corner's face, or the base face spanned by the union,
+  // looked for only when no corner's face holds them. Then no support spans a face; one on an
+  // edge leaves only the face across that edge, else the faces around all[0] are searched.
+  int32_t faces[4] = { sup[0].face, sup[1].face, sup[2].face, -1 };
+  int edgeSupport = -1;
+  for (int i = 0; i < 3; ++i)
+  {
+    edgeSupport = sup[i].n == 2 ? i : edgeSupport;
   }
   for (int i = 0; i < 4; ++i)
   {
+    if (i == 3 && na == 3 && edgeSupport >= 0)
+    {
+      const Support& q = sup[edgeSupport];
+      for (int e = 0; e < 3; ++e)
+      {
+        const int32_t a = F_[3 * q.face + e], b = F_[3 * q.face + (e + 1) % 3];
+        if ((a == q.v[0] && b == q.v[1]) || (a == q.v[1] && b == q.v[0]))
+        {
+          faces[3] = Opp_[3 * q.face + e] / 3;
+        }
+      }
+    }
+    else if (i == 3 && na == 3)
+    {
+      const int32_t start = Out_[all[0]];
+      int32_t h = start;
+      do
+      {
+        if (faceHas(h / 3, all[1]) && faceHas(h / 3, all[2]))
+        {
+          faces[3] = h / 3;
+        }
+        h = Opp_[prevHe(h)];
+      } while (h != start);
+    }
     const int32_t f = faces[i];
-    if (f < 0 || !std::all_of(all, all + na, [&](int32_t v) { return faceHas(f, v); }))
+    if (f < 0 || !holdsAll(f))
     {
       continue;
     }
@@ -1615,9 +1835,7 @@ bool Simplifier::triangleValid(int64_t t, int32_t* starCentre) const
       continue;
     }
     P2 p[3];
-    if (this->inStar(all[i], sup[0], nullptr) && this->inStar(all[i], sup[1], nullptr) &&
-      this->inStar(all[i], sup[2], nullptr) && this->inStar(all[i], sup[0], &p[0]) &&
-      this->inStar(all[i], sup[1], &p[1]) && this->inStar(all[i], sup[2], &p[2]))
+    if (this->inStar(c, sup, p))
     {
       if (starCentre)
       {
@@ -1654,13 +1872,14 @@ bool Simplifier::smooth(int32_t p)
   int nc = 0;
   for (int32_t s = InOffsets_[p]; s < InOffsets_[p + 1] && nc < 61; ++s)
   {
-    const Support q = this->supportOf(Mesh_.triangles[nextHe(InHe_[s])]);
+    const Support q = this->supportOf(Tri_[nextHe(InHe_[s])]);
     for (int j = 0; j < q.n; ++j)
     {
       candidates[nc++] = q.v[j];
     }
   }
-  std::sort(candidates, candidates + nc);
+  std::sort(candidates, candidates + nc,
+    [&](int32_t a, int32_t b) { return VertexRank_[a] < VertexRank_[b]; });
   nc = static_cast<int>(std::unique(candidates, candidates + nc) - candidates);
   int32_t bestS = -1;
   int bestCount = 0;
@@ -1672,7 +1891,7 @@ bool Simplifier::smooth(int32_t p)
     for (int32_t s = InOffsets_[p]; s < InOffsets_[p + 1]; ++s)
     {
       P2 at;
-      if (this->inStar(candidates[c], this->supportOf(Mesh_.triangles[nextHe(InHe_[s])]), &at))
+      if (this->inStar(candidates[c], this->supportOf(Tri_[nextHe(InHe_[s])]), &at))
       {
         ++count;
         mean.x += at.x;
@@ -1751,7 +1970,7 @@ int64_t Simplifier::repairFlips(const Progress& progress)
     {
       for (int i = 0; i < 3; ++i)
       {
-        const int32_t p = Mesh_.triangles[3 * t + i];
+        const int32_t p = Tri_[3 * t + i];
         if (Removed_[p] && !Feature_[p] && !inSet[p])
         {
           inSet[p] = 1;
@@ -1767,7 +1986,7 @@ int64_t Simplifier::repairFlips(const Progress& progress)
       {
         for (int32_t s = InOffsets_[movable[i]]; s < InOffsets_[movable[i] + 1]; ++s)
         {
-          const int32_t q = Mesh_.triangles[nextHe(InHe_[s])];
+          const int32_t q = Tri_[nextHe(InHe_[s])];
           if (Removed_[q] && !Feature_[q] && !inSet[q])
           {
             inSet[q] = 1;
@@ -1776,7 +1995,8 @@ int64_t Simplifier::repairFlips(const Progress& progress)
         }
       }
     }
-    std::sort(movable.begin(), movable.end());
+    std::sort(movable.begin(), movable.end(),
+      [&](int32_t a, int32_t b) { return VertexRank_[a] < VertexRank_[b]; });
     bool moved = false;
     for (int32_t p : movable)
     {
@@ -1811,19 +2031,22 @@ int64_t Simplifier::repairFlips(const Progress& progress)
 
 BaseComplexResult Simplifier::output() const
 {
+  // Everything in input order and input ids.
   BaseComplexResult r;
   std::vector<int32_t> baseIndex(NumVertices_, -1);
-  for (int32_t v = 0; v < NumVertices_; ++v)
+  for (int32_t input = 0; input < NumVertices_; ++input)
   {
+    const int32_t v = VertexOf_[input];
     if (!Removed_[v])
     {
       baseIndex[v] = static_cast<int32_t>(r.baseVertices.size());
-      r.baseVertices.push_back(v);
+      r.baseVertices.push_back(input);
     }
   }
   std::vector<int32_t> faceIndex(NumFaces_, -1);
-  for (int32_t f = 0; f < NumFaces_; ++f)
+  for (int32_t input = 0; input < NumFaces_; ++input)
   {
+    const int32_t f = FaceOf_[input];
     if (!FaceAlive_[f])
     {
       continue;
@@ -1837,18 +2060,19 @@ BaseComplexResult Simplifier::output() const
   }
   r.vertexBaseFace.resize(NumVertices_);
   r.vertexBarycentric.assign(3 * static_cast<size_t>(NumVertices_), 0.0);
-  for (int32_t v = 0; v < NumVertices_; ++v)
+  for (int32_t input = 0; input < NumVertices_; ++input)
   {
+    const int32_t v = VertexOf_[input];
     if (Removed_[v])
     {
-      r.vertexBaseFace[v] = faceIndex[PointFace_[v]];
-      std::copy(&PointBary_[3 * v], &PointBary_[3 * v] + 3, &r.vertexBarycentric[3 * v]);
+      r.vertexBaseFace[input] = faceIndex[PointFace_[v]];
+      std::copy(&PointBary_[3 * v], &PointBary_[3 * v] + 3, &r.vertexBarycentric[3 * input]);
     }
     else
     {
       const int32_t h = Out_[v];
-      r.vertexBaseFace[v] = faceIndex[h / 3];
-      r.vertexBarycentric[3 * v + h % 3] = 1.0;
+      r.vertexBaseFace[input] = faceIndex[h / 3];
+      r.vertexBarycentric[3 * input + h % 3] = 1.0;
     }
   }
   return r;
