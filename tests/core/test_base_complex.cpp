@@ -6,6 +6,7 @@
 #include "tc/off_io.h"
 
 #include "test_data.h"
+#include "test_progress.h"
 
 #include <gtest/gtest.h>
 
@@ -824,22 +825,9 @@ TEST(BaseComplex, IsDeterministic)
 TEST(BaseComplex, ReportsProgressAndHonoursAbort)
 {
   const tc::TriMesh mesh = loadMesh(tctest::testingData("meshes/bunny_npm.off"));
-  std::vector<double> seen;
-  tc::buildBaseComplex(mesh, {}, {}, {}, {},
-    tc::Progress(
-      [&](double f)
-      {
-        seen.push_back(f);
-        return true;
-      }));
-  ASSERT_FALSE(seen.empty());
-  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-  EXPECT_GE(seen.front(), 0.0);
-  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
-  int calls = 0;
-  EXPECT_THROW(
-    tc::buildBaseComplex(mesh, {}, {}, {}, {}, tc::Progress([&](double) { return ++calls < 2; })),
-    tc::Aborted);
+  tctest::expectProgressAndAbort([&](const tc::Progress& p)
+    { tc::buildBaseComplex(mesh, {}, {}, {}, {}, p); },
+    1, [calls = 0](double) mutable { return ++calls < 2; });
 }
 
 TEST(BaseComplex, RejectsInputThatIsNotAClosedManifoldOrDoesNotMatch)

@@ -5,6 +5,7 @@
 #include "tc/mesh_topology.h"
 
 #include "analytic_meshes.h"
+#include "test_progress.h"
 
 #include <tbb/global_control.h>
 
@@ -355,17 +356,7 @@ TEST(CrestLinesProgress, ReportsAndHonoursAbort)
 {
   const tc::TriMesh mesh = tctest::roundedBox(1.0, 0.3, 12).mesh;
   const tc::CurvatureResult curvature = tc::computeCurvature(mesh);
-  double last = 0.0;
-  tc::extractCrestLines(mesh, curvature, {},
-    tc::Progress(
-      [&last](double f)
-      {
-        EXPECT_GE(f, last);
-        last = f;
-        return true;
-      }));
-  EXPECT_DOUBLE_EQ(last, 1.0);
-  EXPECT_THROW(
-    tc::extractCrestLines(mesh, curvature, {}, tc::Progress([](double f) { return f < 0.5; })),
-    tc::Aborted);
+  tctest::expectProgressAndAbort([&](const tc::Progress& p)
+    { tc::extractCrestLines(mesh, curvature, {}, p); },
+    1, [](double f) { return f < 0.5; });
 }

@@ -2,6 +2,7 @@
 #include "tc/curvature.h"
 
 #include "analytic_meshes.h"
+#include "test_progress.h"
 
 #include <tbb/global_control.h>
 
@@ -333,17 +334,7 @@ TEST(CurvatureInput, RejectsBadConnectivityAndOptions)
 TEST(CurvatureProgress, ReportsAndHonoursAbort)
 {
   const tctest::AnalyticMesh m = tctest::icosphere(1.0, 3);
-  std::vector<double> seen;
-  tc::computeCurvature(m.mesh, {},
-    tc::Progress(
-      [&seen](double f)
-      {
-        seen.push_back(f);
-        return true;
-      }));
-  ASSERT_FALSE(seen.empty());
-  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
-  EXPECT_THROW(
-    tc::computeCurvature(m.mesh, {}, tc::Progress([](double f) { return f < 0.5; })), tc::Aborted);
+  tctest::expectProgressAndAbort([&](const tc::Progress& p)
+    { tc::computeCurvature(m.mesh, {}, p); },
+    1, [](double f) { return f < 0.5; });
 }

@@ -10,6 +10,7 @@
 
 #include "analytic_meshes.h"
 #include "test_data.h"
+#include "test_progress.h"
 
 #include <tbb/global_control.h>
 
@@ -504,21 +505,11 @@ TEST(FeatureRefinement, ReportsProgressAndHonoursAbort)
   const tc::TriMesh mesh = tctest::roundedBox(1.0, 0.0, 10).mesh;
   const Inputs in = inputsOf(mesh);
   const std::vector<int32_t> labels = jaggedCubeLabels(mesh, 1.0, 0.2);
-  std::vector<double> seen;
-  tc::refineFeatures(mesh, labels, in.curvature.mean, in.curvature.faceMean, in.crest, {},
-    tc::Progress(
-      [&](double f)
-      {
-        seen.push_back(f);
-        return true;
-      }));
-  ASSERT_GE(seen.size(), 5u);
-  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
-  int calls = 0;
-  EXPECT_THROW(tc::refineFeatures(mesh, labels, in.curvature.mean, in.curvature.faceMean, in.crest,
-                 {}, tc::Progress([&](double) { return ++calls < 3; })),
-    tc::Aborted);
+  tctest::expectProgressAndAbort(
+    [&](const tc::Progress& p) {
+      tc::refineFeatures(mesh, labels, in.curvature.mean, in.curvature.faceMean, in.crest, {}, p);
+    },
+    5, [calls = 0](double) mutable { return ++calls < 3; });
 }
 
 namespace

@@ -5,6 +5,7 @@
 #include "tc/off_io.h"
 
 #include "test_data.h"
+#include "test_progress.h"
 
 #include <gtest/gtest.h>
 
@@ -824,19 +825,9 @@ TEST(Preparation, ReportTextHasOneLinePerNonZeroItem)
 
 TEST(Preparation, ProgressIsReportedInOrderAndAbortStops)
 {
-  std::vector<double> seen;
-  const tc::Progress progress(
-    [&seen](double f)
-    {
-      seen.push_back(f);
-      return true;
-    });
-  tc::prepareMesh(octahedron(), {}, progress);
-  ASSERT_GE(seen.size(), 3u);
-  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-  EXPECT_EQ(seen.back(), 1.0);
-  const tc::Progress abort([](double f) { return f < 0.5; });
-  EXPECT_THROW(tc::prepareMesh(octahedron(), {}, abort), tc::Aborted);
+  tctest::expectProgressAndAbort([](const tc::Progress& p)
+    { tc::prepareMesh(octahedron(), {}, p); },
+    3, [](double f) { return f < 0.5; });
 }
 
 TEST(Preparation, EmptyInputThrows)

@@ -10,6 +10,7 @@
 
 #include "analytic_meshes.h"
 #include "test_data.h"
+#include "test_progress.h"
 
 #include <tbb/global_control.h>
 
@@ -612,22 +613,9 @@ TEST(SpectralClustering, ReportsProgressAndHonoursAbort)
     SCOPED_TRACE(threshold);
     tc::SpectralClusteringOptions o;
     o.nystromThreshold = threshold;
-    std::vector<double> reported;
-    tc::spectralClustering(bunny.mesh, bunny.faceMean, bunny.crest, o,
-      tc::Progress(
-        [&](double f)
-        {
-          reported.push_back(f);
-          return true;
-        }));
-    ASSERT_GT(reported.size(), 3u);
-    EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
-    EXPECT_DOUBLE_EQ(reported.back(), 1.0);
-
-    int calls = 0;
-    EXPECT_THROW(tc::spectralClustering(bunny.mesh, bunny.faceMean, bunny.crest, o,
-                   tc::Progress([&](double) { return ++calls < 3; })),
-      tc::Aborted);
+    tctest::expectProgressAndAbort([&](const tc::Progress& p)
+      { tc::spectralClustering(bunny.mesh, bunny.faceMean, bunny.crest, o, p); },
+      4, [calls = 0](double) mutable { return ++calls < 3; });
   }
 }
 
