@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file atlas.h
+/// The atlas of triangular geometry images (Feng et al. 2010, sections 5.2 and 6): the product
+/// of the static pipeline. One chart per base face; each chart is a right-triangle grid of
+/// (2^d + 1) samples per side at every level d = 0 .. maxLevel; two charts share the
+/// (2^dh + 2) x (2^dh + 1) rectangles of one packed image per mip step.
+///
+/// Sample (i, j) of a chart at level d, with N = 2^d and 0 <= i, j, i + j <= N: corner 0 is
+/// (0, 0), corner 1 is (N, 0), corner 2 is (0, N). Side k runs from corner k to corner k + 1
+/// (side 0: j = 0; side 1: i + j = N; side 2: i = 0), counter-clockwise seen from outside, like
+/// the base face (corner 0, corner 1, corner 2). Parameter t = 0 .. N along side k:
+/// side 0 (t, 0), side 1 (N - t, t), side 2 (0, N - t).
+///
+/// Invariants every producer keeps and every consumer may rely on (validateAtlas checks them):
+/// - the neighbour across side k runs that side the other way: sample t on side k of chart c at
+///   level d is bit-identical to sample N - t on side neighborSide[k] of neighborChart[k] at the
+///   same level d (when both charts have level d);
+/// - every sample at dyadic arc-length fraction t / N of a side is the same point at every level,
+///   so a coarser side's samples are a subset of a finer side's (what stitching by eq. 8 needs);
+/// - the corner samples of all charts around one base vertex are bit-identical.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tc
+{
+/// Names of the attributes every atlas carries first.
+constexpr const char* kAtlasPosition = "Position";
+constexpr const char* kAtlasNormal = "Normal";
+
+struct AtlasChart
+{
+  int32_t maxLevel = 0; ///< d_max: finest level, 2^d_max + 1 samples per side
+  std::array<int32_t, 3> cornerVertex{ -1, -1, -1 };  ///< input point id of the base vertex at corner k
+  std::array<int32_t, 3> neighborChart{ -1, -1, -1 }; ///< chart across side k
+  std::array<int32_t, 3> neighborSide{ -1, -1, -1 };  ///< that chart's side (it runs the other way)
+  std::array<uint8_t, 3> featureSide{ 0, 0, 0 };      ///< 1 if side k follows a feature curve
+  int32_t partner = -1; ///< the chart packed in the same rectangles (-1: none)
+  /// 0: sample (i, j) lies at texel origin + (i, j) (lower-left triangle of its rectangle);
+  /// 1: at origin - (i, j) (upper-right triangle, turned by 180 degrees).
+  uint8_t rotated = 0;
+  /// Per image k = 0 .. maxLevel: texel (x, y) of sample (0, 0) of level maxLevel - k in image k.
+  std::vector<std::array<int32_t, 2>> origin;
+  /// Oriented bounding box as four corners, xyz each: c0 and the three corners adjacent to it
+  /// (the pivot and major axes of eq. 6 of Feng et al.).
+  std::array<double, 12> box{};
+  /// Per level d = 0 .. maxLevel: largest distance between the chart's part of the input surface
+  /// and its level-d grid, in input units (empty when not measured).
+  std::vector<double> levelError;
+};
+
+struct AtlasAttribute
+{
+  std::string name;
+  int32_t components = 0;
+};
+
+/// One packed image (a mip step): every attribute as float32, rows y = 0 .. height - 1, each
+/// row x = 0 .. width - 1, components interleaved. Texels no chart covers hold 0.
+struct AtlasImage
+{
+  int32_t width = 0;
+  int32_t height = 0;
+  std::vector<std::vector<float>> data; ///< per attribute: height x width x components
+};
+
+struct Atlas
+{
+  std::vector<AtlasAttribute> attributes; ///< [0] Position (3), [1] Normal (3), then user arrays
+  std::vector<AtlasImage> images;         ///< image k = 0 (finest) .. max maxLevel
+  std::vector<AtlasChart> charts;         ///< chart c = base face c = PatchId c
+  int64_t inputPoints = 0;                ///< of the mesh the atlas was built from
+  int64_t inputTriangles = 0;
+  double inputDiagonal = 0.0; ///< bounding-box diagonal of that mesh
+  std::string source;         ///< what it was built from (file name), free text
+
+  int32_t maxLevel() const
+  {
+    int32_t m = -1;
+    for (const AtlasChart& c : charts)
+    {
+      m = c.maxLevel > m ? c.maxLevel : m;
+    }
+    return m;
+  }
+};
+
+/// Texel (x, y) of sample (i, j) of chart c at level d (0 <= d <= c.maxLevel), in image
+/// c.maxLevel - d.
+inline std::array<int32_t, 2> atlasTexel(const AtlasChart& c, int32_t d, int32_t i, int32_t j)
+{
+  const std::array<int32_t, 2>& o = c.origin[static_cast<size_t>(c.maxLevel - d)];
+  return c.rotated ? std::array<int32_t, 2>{ o[0] - i, o[1] - j }
+                   : std::array<int32_t, 2>{ o[0] + i, o[1] + j };
+}
+
+/// Grid coordinates (i, j) of parameter t on side k of a level with N = 2^d samples per side.
+inline std::array<int32_t, 2> sidePoint(int32_t side, int32_t t, int32_t n)
+{
+  switch (side)
+  {
+    case 0:
+      return { t, 0 };
+    case 1:
+      return { n - t, t };
+    default:
+      return { 0, n - t };
+  }
+}
+
+/// The attribute values of sample (i, j) of chart `chart` at level d.
+inline const float* atlasSample(
+  const Atlas& atlas, int32_t chart, int32_t attribute, int32_t d, int32_t i, int32_t j)
+{
+  const AtlasChart& c = atlas.charts[static_cast<size_t>(chart)];
+  const AtlasImage& image = atlas.images[static_cast<size_t>(c.maxLevel - d)];
+  const std::array<int32_t, 2> xy = atlasTexel(c, d, i, j);
+  const int32_t comps = atlas.attributes[static_cast<size_t>(attribute)].components;
+  return image.data[static_cast<size_t>(attribute)].data() +
+    (static_cast<size_t>(xy[1]) * static_cast<size_t>(image.width) + static_cast<size_t>(xy[0])) *
+    static_cast<size_t>(comps);
+}
+
+/// Checks the layout and every invariant above (sizes, texels inside their image and not shared
+/// by two charts, neighbour symmetry, bit-identical shared sides and corners).
+/// @throws InputError naming the first chart and rule that fail
+void validateAtlas(const Atlas& atlas);
+} // namespace tc
