@@ -11,7 +11,7 @@ packages=(
   libswscale-dev libgl2ps-dev libpng-dev libnetcdf-dev libgdal-dev libglew-dev
   libdouble-conversion-dev libfreetype-dev
   libeigen3-dev libspectra-dev libcgal-dev libopenexr-dev libboost-graph-dev libassimp-dev
-  libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev
+  libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev nlohmann-json3-dev
   xvfb xauth mesa-utils libgl1-mesa-dri
   python3-numpy python3-pytest
 )
