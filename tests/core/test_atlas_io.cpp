@@ -866,6 +866,11 @@ TEST_F(AtlasIo, RefusesExrFilesThatAreNotTriChartAtlases)
   const std::string message = readError(plain);
   EXPECT_TRUE(mentions(message, plain)) << message;
   EXPECT_TRUE(mentions(message, "not a TriChart atlas")) << message;
+  EXPECT_FALSE(tc::isAtlasFile(plain));
+  EXPECT_FALSE(tc::isAtlasFile(file("missing.exr")));
+  const std::string atlas = file("atlas.exr");
+  tc::writeAtlas(tetrahedronAtlas(1, false), atlas);
+  EXPECT_TRUE(tc::isAtlasFile(atlas));
 
   std::string error = damagedError([](std::vector<ExrPart>& parts)
     { setMetadata(parts, "{\"format\": \"TriChart atlas\", \"version\": 1,"); });

@@ -802,6 +802,21 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
 }
 } // namespace
 
+bool isAtlasFile(const std::string& path)
+{
+  try
+  {
+    checkHeaders(path);
+    Imf::MultiPartInputFile file(path.c_str());
+    readMetadata(path, file.header(0));
+    return true;
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
 void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& progress)
 {
   progress.report(0.0);

@@ -55,4 +55,8 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
 ///   truncated or corrupt (OpenEXR errors, checksum mismatches), parts missing or with wrong
 ///   sizes or channels, or an atlas that fails tc::validateAtlas
 Atlas readAtlas(const std::string& path, const Progress& progress = {});
+
+/// Whether `path` is an OpenEXR file whose headers carry TriChart atlas metadata (headers only:
+/// cheap, never throws; readAtlas still checks everything else).
+bool isAtlasFile(const std::string& path);
 } // namespace tc
