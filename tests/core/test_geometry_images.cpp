@@ -3,7 +3,11 @@
 
 #include "tc/atlas.h"
 #include "tc/errors.h"
+#include "tc/geometry_image_mesh.h"
+#include "tc/mesh_topology.h"
+#include "tc/surface_distance.h"
 
+#include "analytic_meshes.h"
 #include "test_progress.h"
 
 #include <gtest/gtest.h>
@@ -266,6 +270,179 @@ Synthetic cube(int n)
     corners, faces, n, [](const Vec& p) { return p; }, features);
 }
 
+/// What path tracing produces, imitated on a sphere: a jittered icosphere whose vertices nearest
+/// to the six axis points are moved onto them (the base vertices), cut by the planes x = 0,
+/// y = 0 and z = 0. Every triangle a plane crosses is split at Steiner points (inputPointId -1)
+/// into pieces (slivers included); the patches are the octants, the paths the cut polylines.
+Synthetic cutSphere(int subdivisions, double jitter)
+{
+  const tctest::AnalyticMesh am = tctest::jitteredSphere(kRadius, subdivisions, jitter);
+  std::vector<Vec> pts;
+  for (int64_t v = 0; v < am.mesh.numPoints(); ++v)
+  {
+    pts.push_back(am.mesh.point(v));
+  }
+  const int64_t nInput = static_cast<int64_t>(pts.size());
+  std::vector<int32_t> tris = am.mesh.triangles;
+  std::vector<int32_t> parent(tris.size() / 3);
+  for (size_t t = 0; t < parent.size(); ++t)
+  {
+    parent[t] = static_cast<int32_t>(t);
+  }
+  // Axis points in the order +x, -x, +y, -y, +z, -z (the octahedron of octahedronFaces).
+  std::array<int32_t, 6> axisVertex{};
+  for (int a = 0; a < 6; ++a)
+  {
+    Vec target{ 0, 0, 0 };
+    target[a / 2] = a % 2 == 0 ? kRadius : -kRadius;
+    int32_t best = 0;
+    for (int32_t v = 1; v < nInput; ++v)
+    {
+      if (norm(sub(pts[v], target)) < norm(sub(pts[best], target)))
+      {
+        best = v;
+      }
+    }
+    pts[best] = target;
+    axisVertex[a] = best;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    auto sign = [&](int32_t v) { return pts[v][axis] > 0 ? 1 : (pts[v][axis] < 0 ? -1 : 0); };
+    std::map<std::pair<int32_t, int32_t>, int32_t> steiner;
+    auto cut = [&](int32_t a, int32_t b)
+    {
+      const std::pair<int32_t, int32_t> key(std::min(a, b), std::max(a, b));
+      const auto it = steiner.find(key);
+      if (it != steiner.end())
+      {
+        return it->second;
+      }
+      const Vec &p = pts[key.first], &q = pts[key.second];
+      const double t = p[axis] / (p[axis] - q[axis]);
+      Vec x{ p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2]) };
+      x[axis] = 0.0;
+      pts.push_back(x);
+      const int32_t id = static_cast<int32_t>(pts.size() - 1);
+      steiner[key] = id;
+      return id;
+    };
+    std::vector<int32_t> out;
+    std::vector<int32_t> outParent;
+    for (size_t t = 0; t < tris.size() / 3; ++t)
+    {
+      int32_t c[3] = { tris[3 * t], tris[3 * t + 1], tris[3 * t + 2] };
+      int s3[3] = { sign(c[0]), sign(c[1]), sign(c[2]) };
+      auto emit = [&](int32_t a, int32_t b, int32_t d)
+      {
+        out.insert(out.end(), { a, b, d });
+        outParent.push_back(parent[t]);
+      };
+      bool done = false;
+      for (int r = 0; r < 3 && !done; ++r)
+      {
+        const int32_t a = c[r], b = c[(r + 1) % 3], d = c[(r + 2) % 3];
+        const int sa = s3[r], sb = s3[(r + 1) % 3], sd = s3[(r + 2) % 3];
+        if (sa == 0 && sb * sd < 0)
+        {
+          const int32_t p = cut(b, d);
+          emit(a, b, p);
+          emit(a, p, d);
+          done = true;
+        }
+        else if (sa != 0 && sb == sd && sb == -sa)
+        {
+          const int32_t p = cut(a, b), q = cut(a, d);
+          emit(a, p, q);
+          emit(p, b, d);
+          emit(p, d, q);
+          done = true;
+        }
+      }
+      if (!done)
+      {
+        emit(c[0], c[1], c[2]);
+      }
+    }
+    tris = out;
+    parent = outParent;
+  }
+
+  Synthetic s;
+  tc::PatchMesh& pm = s.patches;
+  pm.mesh.triangles = tris;
+  for (const Vec& p : pts)
+  {
+    pm.mesh.points.insert(pm.mesh.points.end(), p.begin(), p.end());
+  }
+  for (int64_t v = 0; v < static_cast<int64_t>(pts.size()); ++v)
+  {
+    pm.inputPointId.push_back(v < nInput ? static_cast<int32_t>(v) : -1);
+  }
+  pm.inputTriangle = parent;
+  for (size_t t = 0; t < tris.size() / 3; ++t)
+  {
+    Vec g{ 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int x = 0; x < 3; ++x)
+      {
+        g[x] += pts[tris[3 * t + k]][x];
+      }
+    }
+    pm.patchId.push_back((g[0] < 0 ? 4 : 0) + (g[1] < 0 ? 2 : 0) + (g[2] < 0 ? 1 : 0));
+  }
+  // Base vertices: the six axis vertices, ascending by id.
+  std::array<int, 6> byId{ 0, 1, 2, 3, 4, 5 };
+  std::sort(byId.begin(), byId.end(), [&](int a, int b) { return axisVertex[a] < axisVertex[b]; });
+  std::array<int32_t, 6> baseOfAxis{};
+  for (int i = 0; i < 6; ++i)
+  {
+    s.base.baseVertices.push_back(axisVertex[byId[i]]);
+    baseOfAxis[byId[i]] = i;
+  }
+  std::map<std::pair<int32_t, int32_t>, int32_t> edgeId;
+  for (const auto& f : octahedronFaces())
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      s.base.baseTriangles.push_back(baseOfAxis[f[k]]);
+      s.base.baseEdgeIsFeature.push_back(0);
+      const int u = f[k], w = f[(k + 1) % 3];
+      const std::pair<int32_t, int32_t> key(
+        std::min(baseOfAxis[u], baseOfAxis[w]), std::max(baseOfAxis[u], baseOfAxis[w]));
+      auto it = edgeId.find(key);
+      if (it == edgeId.end())
+      {
+        // The path: every point on the plane of the third axis, on the quarter circle from the
+        // lower base vertex to the higher one, ordered by angle.
+        const int from = baseOfAxis[u] < baseOfAxis[w] ? u : w, to = from == u ? w : u;
+        const int plane = 3 - from / 2 - to / 2;
+        const Vec a = pts[axisVertex[from]], b = pts[axisVertex[to]];
+        std::vector<std::pair<double, int32_t>> arc;
+        for (int32_t v = 0; v < static_cast<int32_t>(pts.size()); ++v)
+        {
+          if (pts[v][plane] == 0.0 && dot(pts[v], a) >= 0.0 && dot(pts[v], b) >= 0.0)
+          {
+            arc.push_back({ std::atan2(dot(pts[v], b), dot(pts[v], a)), v });
+          }
+        }
+        std::sort(arc.begin(), arc.end());
+        for (const auto& [angle, v] : arc)
+        {
+          pm.pathPoints.push_back(v);
+        }
+        pm.pathOffsets.push_back(static_cast<int64_t>(pm.pathPoints.size()));
+        pm.baseEdges.push_back(key.first);
+        pm.baseEdges.push_back(key.second);
+        it = edgeId.emplace(key, static_cast<int32_t>(edgeId.size())).first;
+      }
+      pm.faceEdges.push_back(it->second);
+    }
+  }
+  return s;
+}
+
 int64_t samplesAt(int32_t d)
 {
   const int64_t n = int64_t(1) << d;
@@ -277,11 +454,12 @@ bool sameFloats(const float* a, const float* b, int32_t n)
   return std::memcmp(a, b, sizeof(float) * static_cast<size_t>(n)) == 0;
 }
 
-/// The invariants of tc/atlas.h, checked directly: layout, texels inside the image and owned by
-/// one chart, neighbour symmetry, bit-identical shared sides (normals exempt on feature sides)
-/// and corners, and every coarser level a subset of the finer one.
+/// The invariants of tc/atlas.h: validateAtlas, and directly, for every attribute: layout, texels
+/// inside the image and owned by one chart, neighbour symmetry, bit-identical shared sides (normals
+/// exempt on feature sides) and corners, and every coarser level a subset of the finer one.
 void expectAtlasInvariants(const tc::Atlas& atlas)
 {
+  EXPECT_NO_THROW(tc::validateAtlas(atlas));
   ASSERT_GE(atlas.attributes.size(), 2u);
   EXPECT_EQ(atlas.attributes[0].name, tc::kAtlasPosition);
   EXPECT_EQ(atlas.attributes[1].name, tc::kAtlasNormal);
@@ -1015,6 +1193,198 @@ TEST(GeometryImages, LevelErrorShrinksWithTheLevelAndBoundsTheSurfaceDistance)
   }
 }
 
+TEST(GeometryImages, RebuiltMeshIsClosedAndLevelErrorBoundsTheInputPoints)
+{
+  const Synthetic& s = skewedCase().input;
+  const tc::Atlas& atlas = skewedCase().atlas;
+  // Charts at levels 0 .. 5 side by side: stitching by eq. 8 must close every seam.
+  std::vector<int32_t> levels;
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    levels.push_back(static_cast<int32_t>(c % 6));
+  }
+  const tc::RebuiltMesh mixed = tc::rebuildMesh(atlas, levels);
+  const tc::EdgeTable edges = tc::buildEdgeTable(mixed.mesh.triangles);
+  int64_t open = 0;
+  for (int64_t e = 0; e < edges.numEdges(); ++e)
+  {
+    open += edges.valence(e) != 2 ? 1 : 0;
+  }
+  EXPECT_EQ(open, 0);
+  EXPECT_EQ(mixed.mesh.numPoints() - edges.numEdges() + mixed.mesh.numTriangles(), 2) << "a sphere";
+
+  // Every chart at level 4 (no stitching): each input point is at most its chart's
+  // levelError[4] from the rebuilt surface.
+  const tc::RebuiltMesh uniform = tc::rebuildMesh(atlas, 4);
+  tc::SurfaceDistanceOptions options;
+  options.samplesPerMesh = 20000;
+  const tc::SurfaceDistanceResult dist = tc::surfaceDistance(s.patches.mesh, uniform.mesh, options);
+  std::vector<double> bound(s.patches.mesh.numPoints(), 0.0);
+  for (size_t t = 0; t < s.patches.patchId.size(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      double& b = bound[s.patches.mesh.triangles[3 * t + k]];
+      b = std::max(b, atlas.charts[s.patches.patchId[t]].levelError[4]);
+    }
+  }
+  int64_t above = 0;
+  double tightest = 0.0;
+  for (size_t v = 0; v < bound.size(); ++v)
+  {
+    above += dist.pointDistance[v] > bound[v] + 1e-6 ? 1 : 0;
+    tightest = std::max(tightest, dist.pointDistance[v] / bound[v]);
+  }
+  std::printf("[          ] rebuilt at level 4: Hausdorff %.3g of the diagonal, input points at "
+              "most %.2f of their chart's levelError[4]\n",
+    dist.hausdorff / dist.diagonal, tightest);
+  EXPECT_EQ(above, 0);
+  EXPECT_GT(tightest, 0.5) << "the bound is not loose";
+}
+
+TEST(GeometryImages, SphereCutLikeTracedPathsGivesAValidAtlas)
+{
+  // Steiner points, sliver pieces and paths that cut across the input triangles, as tracePaths
+  // makes them.
+  const Synthetic s = cutSphere(3, 0.3);
+  const tc::PatchMesh& pm = s.patches;
+  int64_t steiner = 0, flipped = 0, degenerate = 0;
+  for (int32_t id : pm.inputPointId)
+  {
+    steiner += id < 0 ? 1 : 0;
+  }
+  for (int32_t c = 0; c < 8; ++c)
+  {
+    const tc::PatchParameterization p = tc::parameterizePatch(pm, s.base, c);
+    flipped += p.flippedTriangles;
+    degenerate += p.degenerateTriangles;
+  }
+  const tc::Atlas atlas = tc::buildGeometryImages(pm, s.base, {}, {}, {});
+  std::printf("[          ] cut sphere: %lld points (%lld Steiner), %lld pieces of %lld input "
+              "triangles; %lld flipped, %lld degenerate uv triangles; d_max %d\n",
+    static_cast<long long>(pm.mesh.numPoints()), static_cast<long long>(steiner),
+    static_cast<long long>(pm.mesh.numTriangles()), static_cast<long long>(atlas.inputTriangles),
+    static_cast<long long>(flipped), static_cast<long long>(degenerate), atlas.maxLevel());
+  EXPECT_GT(steiner, 0);
+  EXPECT_EQ(flipped, 0);
+  EXPECT_EQ(degenerate, 0);
+  EXPECT_EQ(atlas.inputPoints, pm.mesh.numPoints() - steiner);
+  EXPECT_EQ(atlas.inputTriangles, 1280);
+  EXPECT_LE(finestSamples(atlas), atlas.inputPoints);
+  expectAtlasInvariants(atlas);
+  // Samples on the sphere within the chord error of the pieces (Steiner points lie on chords).
+  double below = 0.0, above = 0.0;
+  for (int32_t c = 0; c < 8; ++c)
+  {
+    const int32_t d = atlas.charts[c].maxLevel, n = 1 << d;
+    for (int32_t j = 0; j <= n; ++j)
+    {
+      for (int32_t i = 0; i + j <= n; ++i)
+      {
+        const double r = norm(toVec(tc::atlasSample(atlas, c, 0, d, i, j)));
+        below = std::max(below, kRadius - r);
+        above = std::max(above, r - kRadius);
+      }
+    }
+  }
+  // The input triangles (on the moved axis vertices) bound how far below the sphere a piece
+  // of them reaches.
+  tc::TriMesh input;
+  input.points.assign(pm.mesh.points.begin(), pm.mesh.points.begin() + 3 * atlas.inputPoints);
+  input.triangles = tctest::jitteredSphere(kRadius, 3, 0.3).mesh.triangles;
+  std::printf(
+    "[          ] below the sphere %.3g, input chord error %.3g\n", below, largestSagitta(input));
+  EXPECT_LE(below, largestSagitta(input) + 1e-6);
+  EXPECT_LE(above, 1e-6);
+  // Every level stitched together closes the sphere.
+  std::vector<int32_t> levels;
+  for (int32_t c = 0; c < 8; ++c)
+  {
+    levels.push_back(c % (atlas.charts[c].maxLevel + 1));
+  }
+  const tc::RebuiltMesh mixed = tc::rebuildMesh(atlas, levels);
+  const tc::EdgeTable edges = tc::buildEdgeTable(mixed.mesh.triangles);
+  int64_t open = 0;
+  for (int64_t e = 0; e < edges.numEdges(); ++e)
+  {
+    open += edges.valence(e) != 2 ? 1 : 0;
+  }
+  EXPECT_EQ(open, 0);
+}
+
+TEST(GeometryImages, TriangleWithAllCornersOnOnePathIsFlattenedNotFlipped)
+{
+  // Retriangulate around the middle point P of side 0 of patch 0 so that one triangle has the
+  // three consecutive path points P-, P, P+ as corners (Floater's theorem excludes such a
+  // triangle: it can only map to a segment of the straight side). Before: (P-, P, A), (P, B, A),
+  // (P, P+, B); after: (P-, P, P+), (P-, P+, B), (P-, B, A).
+  Synthetic s = sphere(8);
+  tc::PatchMesh& pm = s.patches;
+  const int32_t e = pm.faceEdges[0];
+  const int64_t m = (pm.pathOffsets[e] + pm.pathOffsets[e + 1]) / 2;
+  const int32_t P = pm.pathPoints[m], Pm = pm.pathPoints[m - 1], Pp = pm.pathPoints[m + 1];
+  int32_t t1 = -1, t2 = -1, t3 = -1, A = -1, B = -1;
+  for (int32_t t = 0; t < static_cast<int32_t>(pm.patchId.size()); ++t)
+  {
+    const int32_t* c = &pm.mesh.triangles[3 * t];
+    const bool hasP = c[0] == P || c[1] == P || c[2] == P;
+    if (pm.patchId[t] != 0 || !hasP)
+    {
+      continue;
+    }
+    auto other = [&](int32_t x, int32_t y)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (c[k] != x && c[k] != y)
+        {
+          return c[k];
+        }
+      }
+      return -1;
+    };
+    if (c[0] == Pm || c[1] == Pm || c[2] == Pm)
+    {
+      t1 = t;
+      A = other(P, Pm);
+    }
+    else if (c[0] == Pp || c[1] == Pp || c[2] == Pp)
+    {
+      t3 = t;
+      B = other(P, Pp);
+    }
+    else
+    {
+      t2 = t;
+    }
+  }
+  ASSERT_TRUE(t1 >= 0 && t2 >= 0 && t3 >= 0);
+  auto set = [&pm](int32_t t, int32_t a, int32_t b, int32_t c)
+  {
+    pm.mesh.triangles[3 * t] = a;
+    pm.mesh.triangles[3 * t + 1] = b;
+    pm.mesh.triangles[3 * t + 2] = c;
+  };
+  set(t1, Pm, P, Pp);
+  set(t2, Pm, Pp, B);
+  set(t3, Pm, B, A);
+  const tc::PatchParameterization p = tc::parameterizePatch(pm, s.base, 0);
+  EXPECT_EQ(p.flippedTriangles, 0);
+  EXPECT_EQ(p.degenerateTriangles, 1);
+  const tc::Atlas atlas = tc::buildGeometryImages(pm, s.base, {}, {}, {});
+  expectAtlasInvariants(atlas);
+  double below = 0.0;
+  const int32_t d = atlas.charts[0].maxLevel, n = 1 << d;
+  for (int32_t j = 0; j <= n; ++j)
+  {
+    for (int32_t i = 0; i + j <= n; ++i)
+    {
+      below = std::max(below, kRadius - norm(toVec(tc::atlasSample(atlas, 0, 0, d, i, j))));
+    }
+  }
+  EXPECT_LE(below, largestSagitta(pm.mesh) + 1e-6);
+}
+
 TEST(GeometryImages, ReportsProgressAndHonoursAbort)
 {
   const Synthetic s = sphere(8, 30.0);
@@ -1041,6 +1411,9 @@ TEST(GeometryImages, RejectsInputThatDoesNotMatchOrIsNotAPatchDisk)
   EXPECT_NO_THROW(tc::parameterizePatch(pm, s.base, 2));
   pm = s.patches;
   std::swap(pm.pathPoints[1], pm.pathPoints[2]); // a path that leaves the patch boundary
+  EXPECT_THROW(build(pm, s.base), tc::InputError);
+  pm = s.patches;
+  pm.inputPointId[0] = -1; // base vertex 0 made a Steiner point
   EXPECT_THROW(build(pm, s.base), tc::InputError);
   pm = s.patches;
   pm.faceEdges[0] = pm.faceEdges[1];

@@ -148,11 +148,13 @@ Layout checkInput(const PatchMesh& pm, const BaseComplexResult& base)
   }
   L.numCharts = static_cast<int32_t>(nb / 3);
   const int64_t nvb = static_cast<int64_t>(base.baseVertices.size());
-  for (int32_t b : base.baseVertices)
+  for (size_t b = 0; b < base.baseVertices.size(); ++b)
   {
-    if (b < 0 || b >= nv)
+    const int32_t v = base.baseVertices[b];
+    if (v < 0 || v >= nv || pm.inputPointId[v] < 0)
     {
-      throw InputError(where + "base vertex " + num(b) + " is not a point of the patch mesh");
+      throw InputError(where + "base vertex " + num(b) + " is point " + num(v) +
+        ", not an input point of the patch mesh");
     }
   }
   for (size_t i = 0; i < nb; ++i)
@@ -402,7 +404,7 @@ PatchParameterization parameterize(
           num(path[i + 1]) + " is not a boundary side of the patch; check the traced paths");
       }
       loop.push_back(a);
-      // Eq. of the boundary map: arc-length fraction f along side k, on the right triangle.
+      // The boundary map: arc-length fraction f along side k, on the right triangle's side k.
       const double f = length > 0.0 ? arc[i] / length
                                     : static_cast<double>(i) / static_cast<double>(path.size() - 1);
       const double u = k == 0 ? f : (k == 1 ? 1.0 - f : 0.0);
@@ -1197,7 +1199,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     ch.maxLevel = level[c];
     for (int k = 0; k < 3; ++k)
     {
-      ch.cornerVertex[k] = base.baseVertices[base.baseTriangles[3 * c + k]];
+      ch.cornerVertex[k] = patches.inputPointId[base.baseVertices[base.baseTriangles[3 * c + k]]];
       const int32_t e = patches.faceEdges[3 * c + k];
       const int slot = L.edgeChart[2 * e] == c && L.edgeSide[2 * e] == k ? 1 : 0;
       ch.neighborChart[k] = L.edgeChart[2 * e + slot];
