@@ -60,6 +60,14 @@ int64_t gridSamples(int32_t d)
   return (n + 1) * (n + 2) / 2;
 }
 
+/// Progress steps of a parallel loop over n patches or charts: parallel_for runs its steps one
+/// after the other, so each must hold several items for both cores to work (a few dozen
+/// charts are common, and one chart's box search alone takes tens of milliseconds).
+int blockSteps(int64_t n)
+{
+  return static_cast<int>(std::clamp<int64_t>(n / 4, 1, 32));
+}
+
 /// Index of sample (i, j) in a level with n = 2^d samples per side, rows j = 0 .. n.
 inline int64_t gridIndex(int64_t n, int64_t i, int64_t j)
 {
@@ -1168,7 +1176,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       }
       weightedArea[c] = sum;
     },
-    progress.sub(0.02, 0.45));
+    progress.sub(0.02, 0.45), blockSteps(nc));
   for (const std::string& f : failure)
   {
     if (!f.empty())
@@ -1350,7 +1358,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
       }
     },
-    progress.sub(0.45, 0.5));
+    progress.sub(0.45, 0.5), blockSteps(ne));
 
   // 4. Every chart's finest grid, its error per level and its oriented bounding box.
   std::vector<ChartGrid> grids(nc);
@@ -1546,7 +1554,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       }
       ch.box = orientedBox(pts, static_cast<unsigned int>(c) + 1u).corners;
     },
-    progress.sub(0.5, 0.85));
+    progress.sub(0.5, 0.85), blockSteps(nc));
 
   // 5. Packing (paper 5.2): charts sorted by d_max, each paired with the next closest one; one
   // image per mip step, rectangles placed by a shelf packer.
@@ -1630,7 +1638,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
       }
     },
-    progress.sub(0.85, 1.0));
+    progress.sub(0.85, 1.0), blockSteps(nc));
   progress.report(1.0);
   return atlas;
 }
