@@ -57,9 +57,9 @@ inline std::array<double, 3> faceNormal(const tc::TriMesh& m, int64_t f)
   return n;
 }
 
-/// Stand-in for the feature stage (someone else's): sharp edges (dihedral angle over 45
-/// degrees) are the feature curves, their ends the feature vertices, and the vertices where a
-/// number of sharp edges other than 2 meet are corners.
+/// Stand-in for the feature stage, so these tests do not depend on it: sharp edges (dihedral angle
+/// over 45 degrees) are the feature curves, their ends the feature vertices, and the vertices where
+/// a number of sharp edges other than 2 meet are corners.
 struct Features
 {
   std::vector<uint8_t> featureVertex;

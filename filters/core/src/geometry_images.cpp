@@ -4,9 +4,6 @@
 #include "tc/errors.h"
 #include "tc/parallel.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Optimal_bounding_box/oriented_bounding_box.h>
-
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -29,8 +26,8 @@
 // The 2-D point location is a uniform bucket grid over the unit square rather than a CGAL
 // AABB tree: CGAL 5.5 has no 2-D AABB traits, and the parameter domain is a fixed square.
 //
-// Packing is written by hand (paper section 5.2, no library packs triangle pairs); the oriented
-// bounding boxes come from CGAL::oriented_bounding_box.
+// Packing is written by hand (paper section 5.2, no library packs triangle pairs); so are the
+// oriented bounding boxes (principal axes; see orientedBox for why not CGAL's optimal box).
 
 namespace tc
 {
@@ -829,49 +826,29 @@ Box boxInFrame(const std::vector<Vec3>& points, const Eigen::Matrix3d& R)
   return b;
 }
 
-/// Oriented bounding box with CGAL's optimal-box search (fixed seed: deterministic and safe to
-/// run in parallel); principal axes when CGAL cannot (3 points or fewer) or its rotation is not
-/// orthonormal.
-Box orientedBox(const std::vector<Vec3>& points, unsigned int seed)
+/// Oriented bounding box along the principal axes of the patch's points. Written by hand
+/// rather than with CGAL::oriented_bounding_box: CGAL's optimal-box search costs 20-50 ms per
+/// chart whatever its size (measured), tens of seconds for the thousand charts a detailed mesh
+/// can have, while the box only feeds the projected-area LOD estimate of eq. 6, for which
+/// principal axes are close enough.
+Box orientedBox(const std::vector<Vec3>& points)
 {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  bool found = false;
-  if (points.size() > 3)
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& q : points)
   {
-    std::vector<K::Point_3> pts;
-    pts.reserve(points.size());
-    for (const Vec3& q : points)
-    {
-      pts.emplace_back(q.x(), q.y(), q.z());
-    }
-    CGAL::Aff_transformation_3<K> rotation;
-    CGAL::oriented_bounding_box(
-      pts, rotation, CGAL::parameters::use_convex_hull(true).random_seed(seed));
-    for (int i = 0; i < 3; ++i)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        R(i, j) = CGAL::to_double(rotation.m(i, j));
-      }
-    }
-    found = R.allFinite() && (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6;
+    mean += q;
   }
-  if (!found)
+  mean /= static_cast<double>(std::max<size_t>(points.size(), 1));
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& q : points)
   {
-    Vec3 mean = Vec3::Zero();
-    for (const Vec3& q : points)
-    {
-      mean += q;
-    }
-    mean /= static_cast<double>(points.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vec3& q : points)
-    {
-      cov += (q - mean) * (q - mean).transpose();
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    R = eig.eigenvectors().transpose();
+    cov += (q - mean) * (q - mean).transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Matrix3d R = eig.eigenvectors().transpose();
+  if (!R.allFinite() || (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-6)
+  {
+    R = Eigen::Matrix3d::Identity();
   }
   return boxInFrame(points, R);
 }
@@ -1554,7 +1531,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       {
         pts[v] = pointOf(mesh, p.points[v]);
       }
-      ch.box = orientedBox(pts, static_cast<unsigned int>(c) + 1u).corners;
+      ch.box = orientedBox(pts).corners;
     },
     progress.sub(0.5, 0.85), blockSteps(nc));
 
