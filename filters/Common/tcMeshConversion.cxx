@@ -333,17 +333,6 @@ std::string GetTextField(vtkFieldData* fd, const char* name)
 
 namespace
 {
-void addIntField(vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& v)
-{
-  auto array = vtkSmartPointer<vtkIntArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(v.size() / static_cast<size_t>(components)));
-  std::copy(v.begin(), v.end(), array->GetPointer(0));
-  fd->RemoveArray(name);
-  fd->AddArray(array);
-}
-
 bool readIntField(
   vtkFieldData* fd, const char* name, int components, std::vector<int32_t>& v, std::string& error)
 {
@@ -364,11 +353,22 @@ bool readIntField(
 }
 } // namespace
 
+void AddIntField(vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& v)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(v.size() / static_cast<size_t>(components)));
+  std::copy(v.begin(), v.end(), array->GetPointer(0));
+  fd->RemoveArray(name);
+  fd->AddArray(array);
+}
+
 void AddBaseComplexFields(const tc::BaseComplexResult& base, vtkFieldData* fd)
 {
-  addIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices);
-  addIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles);
-  addIntField(fd, tc::kBaseEdgeIsFeature, 3,
+  AddIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices);
+  AddIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles);
+  AddIntField(fd, tc::kBaseEdgeIsFeature, 3,
     std::vector<int32_t>(base.baseEdgeIsFeature.begin(), base.baseEdgeIsFeature.end()));
 }
 

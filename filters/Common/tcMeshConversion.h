@@ -78,6 +78,10 @@ TRICHARTCOMMON_EXPORT void SetTextField(
 /// Reads back a text field written by SetTextField ("" when absent).
 TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);
 
+/// Adds (or replaces) the int field array `name` of #values / components tuples to `fd`.
+TRICHARTCOMMON_EXPORT void AddIntField(
+  vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& values);
+
 /// Adds the base complex of `base` (BaseVertexIds, BaseTriangles #Fb x 3, BaseEdgeIsFeature
 /// #Fb x 3) to `fd` as field arrays.
 TRICHARTCOMMON_EXPORT void AddBaseComplexFields(

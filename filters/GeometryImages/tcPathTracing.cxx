@@ -25,20 +25,6 @@ tcPathTracing::tcPathTracing()
 
 tcPathTracing::~tcPathTracing() = default;
 
-namespace
-{
-void addField(vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& v)
-{
-  vtkNew<vtkIntArray> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(v.size() / static_cast<size_t>(components)));
-  std::copy(v.begin(), v.end(), array->GetPointer(0));
-  fd->RemoveArray(name);
-  fd->AddArray(array);
-}
-} // namespace
-
 int tcPathTracing::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -125,9 +111,9 @@ int tcPathTracing::RequestData(
   vtkFieldData* fd = output->GetFieldData();
   fd->ShallowCopy(input->GetFieldData());
   tcvtk::AddBaseComplexFields(base, fd);
-  addField(fd, tc::kBaseEdges, 2, patches.baseEdges);
-  addField(fd, tc::kFaceEdges, 3, patches.faceEdges);
-  addField(fd, tc::kPathPoints, 1, patches.pathPoints);
+  tcvtk::AddIntField(fd, tc::kBaseEdges, 2, patches.baseEdges);
+  tcvtk::AddIntField(fd, tc::kFaceEdges, 3, patches.faceEdges);
+  tcvtk::AddIntField(fd, tc::kPathPoints, 1, patches.pathPoints);
   fd->RemoveArray(tc::kPathOffsets);
   fd->AddArray(tcvtk::MakeIntArray(tc::kPathOffsets, patches.pathOffsets));
 

@@ -22,32 +22,6 @@
 #include <cmath>
 #include <set>
 
-namespace
-{
-/// V - E + F of a triangle mesh.
-long long Euler(vtkPolyData* mesh)
-{
-  vtkNew<vtkExtractEdges> edges;
-  edges->SetInputData(mesh);
-  edges->Update();
-  return mesh->GetNumberOfPoints() - edges->GetOutput()->GetNumberOfLines() +
-    mesh->GetNumberOfPolys();
-}
-
-/// Boundary plus non-manifold edges (0 for a closed manifold).
-vtkIdType OpenOrNonManifoldEdges(vtkPolyData* mesh)
-{
-  vtkNew<vtkFeatureEdges> edges;
-  edges->SetInputData(mesh);
-  edges->BoundaryEdgesOn();
-  edges->NonManifoldEdgesOn();
-  edges->FeatureEdgesOff();
-  edges->ManifoldEdgesOff();
-  edges->Update();
-  return edges->GetOutput()->GetNumberOfLines();
-}
-}
-
 int TestBaseComplex(int argc, char* argv[])
 {
   tctest::Checker check;
@@ -70,8 +44,8 @@ int TestBaseComplex(int argc, char* argv[])
 
     TC_CHECK(check, complex->GetNumberOfPolys() >= 4);
     TC_CHECK(check, complex->GetNumberOfPolys() < mesh->GetNumberOfPolys() / 4);
-    TC_CHECK(check, OpenOrNonManifoldEdges(complex) == 0);
-    TC_CHECK(check, Euler(complex) == Euler(mesh));
+    TC_CHECK(check, tctest::OpenOrNonManifoldEdges(complex) == 0);
+    TC_CHECK(check, tctest::Euler(complex) == tctest::Euler(mesh));
 
     vtkDataArray* inputIds = complex->GetPointData()->GetArray(tc::kInputPointId);
     vtkDataArray* faces = parameterized->GetPointData()->GetArray(tc::kBaseFaceId);

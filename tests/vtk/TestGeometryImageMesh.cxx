@@ -26,30 +26,6 @@
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 
-namespace
-{
-long long Euler(vtkPolyData* mesh)
-{
-  vtkNew<vtkExtractEdges> edges;
-  edges->SetInputData(mesh);
-  edges->Update();
-  return mesh->GetNumberOfPoints() - edges->GetOutput()->GetNumberOfLines() +
-    mesh->GetNumberOfPolys();
-}
-
-vtkIdType OpenOrNonManifoldEdges(vtkPolyData* mesh)
-{
-  vtkNew<vtkFeatureEdges> edges;
-  edges->SetInputData(mesh);
-  edges->BoundaryEdgesOn();
-  edges->NonManifoldEdgesOn();
-  edges->FeatureEdgesOff();
-  edges->ManifoldEdgesOff();
-  edges->Update();
-  return edges->GetOutput()->GetNumberOfLines();
-}
-}
-
 int TestGeometryImageMesh(int argc, char* argv[])
 {
   tctest::Checker check;
@@ -59,17 +35,10 @@ int TestGeometryImageMesh(int argc, char* argv[])
   {
     return 1;
   }
-  vtkSmartPointer<tcFeatureRefinement> refinement = tctest::FeatureStages(mesh);
-  vtkNew<tcBaseComplex> base;
-  base->SetInputConnection(refinement->GetOutputPort());
-  vtkNew<tcPathTracing> tracing;
-  tracing->SetInputConnection(base->GetOutputPort(1));
-  vtkNew<tcGeometryImages> images;
-  images->SetInputConnection(tracing->GetOutputPort());
   // Four samples per input point: the bundled bunny is coarse (1.9K points), and its charts
   // need that many to follow it within 1% at their finest level.
-  images->SetSampleBudget(4 * mesh->GetNumberOfPoints());
-  images->Update();
+  vtkSmartPointer<tcGeometryImages> images =
+    tctest::AtlasStages(mesh, 4 * mesh->GetNumberOfPoints());
   auto* charts = vtkTable::SafeDownCast(images->GetOutput()->GetBlock(0));
   if (!TC_CHECK(check, charts != nullptr && charts->GetNumberOfRows() > 0))
   {
@@ -102,8 +71,8 @@ int TestGeometryImageMesh(int argc, char* argv[])
       level, static_cast<long long>(out->GetNumberOfPoints()),
       static_cast<long long>(out->GetNumberOfPolys()), 100.0 * relative,
       100.0 * distance->GetRmsDistance() / distance->GetDiagonal());
-    TC_CHECK(check, OpenOrNonManifoldEdges(out) == 0);
-    TC_CHECK(check, Euler(out) == Euler(mesh));
+    TC_CHECK(check, tctest::OpenOrNonManifoldEdges(out) == 0);
+    TC_CHECK(check, tctest::Euler(out) == tctest::Euler(mesh));
     TC_CHECK(check, relative <= previous * 1.05);
     previous = relative;
     rms = distance->GetRmsDistance() / distance->GetDiagonal();
@@ -126,8 +95,8 @@ int TestGeometryImageMesh(int argc, char* argv[])
     }
     rebuild->SetChartLevels(levels);
     rebuild->Update();
-    TC_CHECK(check, OpenOrNonManifoldEdges(rebuild->GetOutput()) == 0);
-    TC_CHECK(check, Euler(rebuild->GetOutput()) == Euler(mesh));
+    TC_CHECK(check, tctest::OpenOrNonManifoldEdges(rebuild->GetOutput()) == 0);
+    TC_CHECK(check, tctest::Euler(rebuild->GetOutput()) == tctest::Euler(mesh));
   }
   rebuild->SetChartLevels(nullptr);
 

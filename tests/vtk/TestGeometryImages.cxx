@@ -15,6 +15,7 @@
 
 #include <vtkCamera.h>
 #include <vtkExecutive.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageActor.h>
 #include <vtkImageData.h>
@@ -102,13 +103,7 @@ int TestGeometryImages(int argc, char* argv[])
   {
     return 1;
   }
-  vtkSmartPointer<tcFeatureRefinement> refinement = tctest::FeatureStages(mesh);
-  vtkNew<tcBaseComplex> base;
-  base->SetInputConnection(refinement->GetOutputPort());
-  vtkNew<tcPathTracing> tracing;
-  tracing->SetInputConnection(base->GetOutputPort(1));
-  vtkNew<tcGeometryImages> images;
-  images->SetInputConnection(tracing->GetOutputPort());
+  vtkSmartPointer<tcGeometryImages> images = tctest::AtlasStages(mesh);
   images->AddResampledArray(tc::kMeanCurvature);
   images->Update();
   vtkMultiBlockDataSet* atlas = images->GetOutput();
@@ -118,7 +113,10 @@ int TestGeometryImages(int argc, char* argv[])
   {
     return 1;
   }
-  TC_CHECK(check, charts->GetNumberOfRows() == base->GetOutput(0)->GetNumberOfPolys());
+  auto* patches = vtkPolyData::SafeDownCast(images->GetInputDataObject(0, 0));
+  TC_CHECK(check,
+    charts->GetNumberOfRows() ==
+      patches->GetFieldData()->GetArray(tc::kBaseTriangles)->GetNumberOfTuples());
   auto* finest = vtkImageData::SafeDownCast(levels->GetBlock(0));
   TC_CHECK(check, finest->GetPointData()->GetArray(tc::kMeanCurvature) != nullptr);
 

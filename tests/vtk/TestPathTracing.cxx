@@ -27,27 +27,6 @@
 
 namespace
 {
-long long Euler(vtkPolyData* mesh)
-{
-  vtkNew<vtkExtractEdges> edges;
-  edges->SetInputData(mesh);
-  edges->Update();
-  return mesh->GetNumberOfPoints() - edges->GetOutput()->GetNumberOfLines() +
-    mesh->GetNumberOfPolys();
-}
-
-vtkIdType OpenOrNonManifoldEdges(vtkPolyData* mesh)
-{
-  vtkNew<vtkFeatureEdges> edges;
-  edges->SetInputData(mesh);
-  edges->BoundaryEdgesOn();
-  edges->NonManifoldEdgesOn();
-  edges->FeatureEdgesOff();
-  edges->ManifoldEdgesOff();
-  edges->Update();
-  return edges->GetOutput()->GetNumberOfLines();
-}
-
 double Area(vtkPolyData* mesh)
 {
   vtkNew<vtkMassProperties> mass;
@@ -98,8 +77,8 @@ int TestPathTracing(int argc, char* argv[])
     TC_CHECK(check, static_cast<vtkIdType>(ids.size()) == baseFaces);
     TC_CHECK(check, paths->GetNumberOfLines() == 3 * baseFaces / 2);
     TC_CHECK(check, steiner >= 0);
-    TC_CHECK(check, OpenOrNonManifoldEdges(patches) == 0);
-    TC_CHECK(check, Euler(patches) == Euler(mesh));
+    TC_CHECK(check, tctest::OpenOrNonManifoldEdges(patches) == 0);
+    TC_CHECK(check, tctest::Euler(patches) == tctest::Euler(mesh));
     TC_CHECK(check, std::abs(Area(patches) - Area(mesh)) <= 1e-9 * Area(mesh));
 
     // Every path starts and ends at a base vertex (an input point that is a base vertex).

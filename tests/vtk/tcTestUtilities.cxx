@@ -1,17 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcTestUtilities.h"
 
+#include "tcBaseComplex.h"
 #include "tcColorMaps.h"
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
+#include "tcGeometryImages.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
+#include "tcPathTracing.h"
 #include "tcSpectralClustering.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkExtractEdges.h>
+#include <vtkFeatureEdges.h>
 #include <vtkGlyph3DMapper.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
@@ -220,5 +225,42 @@ bool MatchesBaseline(int argc, char* argv[], vtkRenderWindow* window, double thr
   window->Render();
   const int result = vtkRegressionTester::Test(argc, argv, window, threshold);
   return result == vtkRegressionTester::PASSED;
+}
+long long Euler(vtkPolyData* mesh)
+{
+  vtkNew<vtkExtractEdges> edges;
+  edges->SetInputData(mesh);
+  edges->Update();
+  return mesh->GetNumberOfPoints() - edges->GetOutput()->GetNumberOfLines() +
+    mesh->GetNumberOfPolys();
+}
+
+vtkIdType OpenOrNonManifoldEdges(vtkPolyData* mesh)
+{
+  vtkNew<vtkFeatureEdges> edges;
+  edges->SetInputData(mesh);
+  edges->BoundaryEdgesOn();
+  edges->NonManifoldEdgesOn();
+  edges->FeatureEdgesOff();
+  edges->ManifoldEdgesOff();
+  edges->Update();
+  return edges->GetOutput()->GetNumberOfLines();
+}
+
+vtkSmartPointer<tcGeometryImages> AtlasStages(vtkPolyData* prepared, vtkIdType sampleBudget)
+{
+  vtkSmartPointer<tcFeatureRefinement> refinement = FeatureStages(prepared);
+  vtkNew<tcBaseComplex> base;
+  base->SetInputConnection(refinement->GetOutputPort());
+  vtkNew<tcPathTracing> tracing;
+  tracing->SetInputConnection(base->GetOutputPort(1));
+  auto images = vtkSmartPointer<tcGeometryImages>::New();
+  images->SetInputConnection(tracing->GetOutputPort());
+  if (sampleBudget > 0)
+  {
+    images->SetSampleBudget(sampleBudget);
+  }
+  images->Update();
+  return images;
 }
 } // namespace tctest

@@ -11,6 +11,7 @@
 #include <string>
 
 class tcFeatureRefinement;
+class tcGeometryImages;
 class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -53,6 +54,17 @@ vtkSmartPointer<vtkRenderWindow> SideBySide(vtkRenderer* left, vtkRenderer* righ
 
 /// Compares the window with the baseline given by -V; true when it matches.
 bool MatchesBaseline(int argc, char* argv[], vtkRenderWindow* window, double threshold = 0.05);
+
+/// V - E + F of a triangle mesh.
+long long Euler(vtkPolyData* mesh);
+
+/// Boundary plus non-manifold edges (0 for a closed manifold).
+vtkIdType OpenOrNonManifoldEdges(vtkPolyData* mesh);
+
+/// tcBaseComplex -> tcPathTracing -> tcGeometryImages after FeatureStages on a prepared mesh,
+/// with `sampleBudget` (0: the filter's default); the geometry-image filter is returned updated,
+/// its input chain reachable through it.
+vtkSmartPointer<tcGeometryImages> AtlasStages(vtkPolyData* prepared, vtkIdType sampleBudget = 0);
 
 /// Counts failed checks and prints each with its location.
 struct Checker
