@@ -9,7 +9,7 @@ endif ()
 
 set(_tc_vtk_components
   CommonCore CommonDataModel CommonExecutionModel FiltersCore FiltersGeneral FiltersGeometry FiltersSources CommonSystem
-  IOGeometry IOLegacy IOPLY IOXML IOImage ImagingCore
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage ImagingCore
   RenderingCore RenderingOpenGL2 RenderingAnnotation RenderingFreeType InteractionStyle
   TestingCore TestingRendering)
 if (TRICHART_WRAP_PYTHON)
@@ -31,9 +31,10 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/Curvature/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Features/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/BaseComplex/vtk.module
+    ${CMAKE_SOURCE_DIR}/filters/GeometryImages/vtk.module
   REQUEST_MODULES
     TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
-    TriChart::BaseComplex
+    TriChart::BaseComplex TriChart::GeometryImages
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -50,7 +51,8 @@ vtk_module_build(
 
 # The filter modules that users see (the Common module is internal).
 set(TRICHART_FILTER_MODULES
-  TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex)
+  TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex
+  TriChart::GeometryImages)
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(

@@ -117,6 +117,9 @@ int tcBaseComplex::RequestData(
   parameterized->GetPointData()->AddArray(
     tcvtk::MakeArray(tc::kBaseBarycentric, 3, result.vertexBarycentric));
   parameterized->GetPointData()->SetActiveScalars(tc::kBaseFaceId);
+  // The base complex itself travels with the parameterized mesh, so that tcPathTracing needs
+  // this one output only.
+  tcvtk::AddBaseComplexFields(result, parameterized->GetFieldData());
   return 1;
 }
 

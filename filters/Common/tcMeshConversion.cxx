@@ -6,6 +6,7 @@
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -328,6 +329,166 @@ std::string GetTextField(vtkFieldData* fd, const char* name)
     text += lines->GetValue(i) + "\n";
   }
   return text;
+}
+
+namespace
+{
+void addIntField(vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& v)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(v.size() / static_cast<size_t>(components)));
+  std::copy(v.begin(), v.end(), array->GetPointer(0));
+  fd->RemoveArray(name);
+  fd->AddArray(array);
+}
+
+bool readIntField(
+  vtkFieldData* fd, const char* name, int components, std::vector<int32_t>& v, std::string& error)
+{
+  vtkDataArray* array = fd ? fd->GetArray(name) : nullptr;
+  if (!array || array->GetNumberOfComponents() != components)
+  {
+    error = std::string("field array ") + name + " with " + std::to_string(components) +
+      " components is missing (connect the second output of tcBaseComplex)";
+    return false;
+  }
+  v.resize(static_cast<size_t>(array->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < array->GetNumberOfValues(); ++i)
+  {
+    v[static_cast<size_t>(i)] =
+      static_cast<int32_t>(std::llround(array->GetComponent(i / components, i % components)));
+  }
+  return true;
+}
+} // namespace
+
+void AddBaseComplexFields(const tc::BaseComplexResult& base, vtkFieldData* fd)
+{
+  addIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices);
+  addIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles);
+  addIntField(fd, tc::kBaseEdgeIsFeature, 3,
+    std::vector<int32_t>(base.baseEdgeIsFeature.begin(), base.baseEdgeIsFeature.end()));
+}
+
+bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, std::string& error)
+{
+  base = tc::BaseComplexResult();
+  vtkFieldData* fd = parameterized->GetFieldData();
+  const vtkIdType n = parameterized->GetNumberOfPoints();
+  std::vector<double> barycentric;
+  if (!readIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices, error) ||
+    !readIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles, error) ||
+    !readIntField(fd, tc::kBaseEdgeIsFeature, 3, base.baseEdgeIsFeature, error) ||
+    !ReadIntArray(parameterized->GetPointData(), tc::kBaseFaceId, n, base.vertexBaseFace, error) ||
+    !ReadArray(
+      parameterized->GetPointData(), tc::kBaseBarycentric, n, 3, base.vertexBarycentric, error))
+  {
+    return false;
+  }
+  if (base.baseEdgeIsFeature.size() != base.baseTriangles.size())
+  {
+    error = "BaseEdgeIsFeature and BaseTriangles do not have the same number of faces";
+    return false;
+  }
+  const int32_t nb = static_cast<int32_t>(base.baseVertices.size());
+  const int32_t nf = static_cast<int32_t>(base.baseTriangles.size() / 3);
+  for (int32_t v : base.baseVertices)
+  {
+    if (v < 0 || v >= n)
+    {
+      error = "BaseVertexIds names a point the mesh does not have";
+      return false;
+    }
+  }
+  for (int32_t v : base.baseTriangles)
+  {
+    if (v < 0 || v >= nb)
+    {
+      error = "BaseTriangles names a base vertex that does not exist";
+      return false;
+    }
+  }
+  for (int32_t f : base.vertexBaseFace)
+  {
+    if (f < 0 || f >= nf)
+    {
+      error = "BaseFaceId names a base face that does not exist";
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ReadPatchMesh(
+  vtkPolyData* patches, tc::PatchMesh& mesh, tc::BaseComplexResult& base, std::string& error)
+{
+  mesh = tc::PatchMesh();
+  base = tc::BaseComplexResult();
+  if (!ToTriMesh(patches, mesh.mesh, error))
+  {
+    return false;
+  }
+  const vtkIdType np = patches->GetNumberOfPoints();
+  const vtkIdType nf = patches->GetNumberOfCells();
+  vtkFieldData* fd = patches->GetFieldData();
+  std::vector<int32_t> offsets;
+  std::vector<int32_t> steinerEdge;
+  std::vector<double> steinerParameter;
+  if (!ReadIntArray(patches->GetPointData(), tc::kInputPointId, np, mesh.inputPointId, error) ||
+    !ReadIntArray(patches->GetCellData(), tc::kPatchId, nf, mesh.patchId, error) ||
+    !ReadIntArray(patches->GetCellData(), tc::kInputCellId, nf, mesh.inputTriangle, error) ||
+    !ReadArray(patches->GetPointData(), tc::kSteinerParameter, np, 1, steinerParameter, error) ||
+    !readIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices, error) ||
+    !readIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles, error) ||
+    !readIntField(fd, tc::kBaseEdgeIsFeature, 3, base.baseEdgeIsFeature, error) ||
+    !readIntField(fd, tc::kBaseEdges, 2, mesh.baseEdges, error) ||
+    !readIntField(fd, tc::kFaceEdges, 3, mesh.faceEdges, error) ||
+    !readIntField(fd, tc::kPathOffsets, 1, offsets, error) ||
+    !readIntField(fd, tc::kPathPoints, 1, mesh.pathPoints, error))
+  {
+    error += " (connect the first output of tcPathTracing)";
+    return false;
+  }
+  vtkDataArray* edges = patches->GetPointData()->GetArray(tc::kSteinerEdge);
+  if (!edges || edges->GetNumberOfComponents() != 2 || edges->GetNumberOfTuples() != np)
+  {
+    error = std::string("point array ") + tc::kSteinerEdge + " with 2 components is missing";
+    return false;
+  }
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    if (mesh.inputPointId[static_cast<size_t>(p)] < 0)
+    {
+      mesh.steinerEdge.push_back(static_cast<int32_t>(edges->GetComponent(p, 0)));
+      mesh.steinerEdge.push_back(static_cast<int32_t>(edges->GetComponent(p, 1)));
+      mesh.steinerParameter.push_back(steinerParameter[static_cast<size_t>(p)]);
+    }
+  }
+  mesh.pathOffsets.assign(offsets.begin(), offsets.end());
+  const size_t ne = mesh.baseEdges.size() / 2;
+  bool consistent = mesh.pathOffsets.size() == ne + 1 && mesh.pathOffsets.front() == 0 &&
+    mesh.pathOffsets.back() == static_cast<int64_t>(mesh.pathPoints.size()) &&
+    mesh.faceEdges.size() == base.baseTriangles.size();
+  for (size_t e = 0; consistent && e < ne; ++e)
+  {
+    consistent = mesh.pathOffsets[e] < mesh.pathOffsets[e + 1];
+  }
+  for (int32_t p : mesh.pathPoints)
+  {
+    consistent = consistent && p >= 0 && p < np;
+  }
+  for (int32_t e : mesh.faceEdges)
+  {
+    consistent = consistent && e >= 0 && static_cast<size_t>(e) < ne;
+  }
+  if (!consistent)
+  {
+    error = "the paths and base edges in the field data do not match each other";
+    return false;
+  }
+  return true;
 }
 
 tc::Progress MakeProgress(vtkAlgorithm* algorithm)

@@ -10,7 +10,9 @@
 
 #include "TriChartCommonModule.h"
 
+#include "tc/base_complex.h"
 #include "tc/mesh.h"
+#include "tc/path_tracing.h"
 #include "tc/progress.h"
 
 #include <vtkSmartPointer.h>
@@ -75,6 +77,24 @@ TRICHARTCOMMON_EXPORT void SetTextField(
 
 /// Reads back a text field written by SetTextField ("" when absent).
 TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);
+
+/// Adds the base complex of `base` (BaseVertexIds, BaseTriangles #Fb x 3, BaseEdgeIsFeature
+/// #Fb x 3) to `fd` as field arrays.
+TRICHARTCOMMON_EXPORT void AddBaseComplexFields(
+  const tc::BaseComplexResult& base, vtkFieldData* fd);
+
+/// The base complex and MAPS parameterization carried by tcBaseComplex's second output: field
+/// arrays as AddBaseComplexFields writes them, point arrays BaseFaceId and BaseBarycentric.
+/// Returns false and says what is missing in `error`.
+TRICHARTCOMMON_EXPORT bool ReadBaseComplex(
+  vtkPolyData* parameterized, tc::BaseComplexResult& base, std::string& error);
+
+/// The split mesh, paths and base complex carried by tcPathTracing's first output (point
+/// arrays InputPointId, SteinerEdge, SteinerParameter; cell arrays PatchId, InputCellId; field
+/// arrays of the base complex and the paths). `base` gets baseVertices, baseTriangles and
+/// baseEdgeIsFeature only. Returns false and says what is missing in `error`.
+TRICHARTCOMMON_EXPORT bool ReadPatchMesh(
+  vtkPolyData* patches, tc::PatchMesh& mesh, tc::BaseComplexResult& base, std::string& error);
 
 /// Progress of the core reported through `algorithm`'s UpdateProgress (ParaView's progress
 /// bar) and aborted when its AbortExecute flag is set.

@@ -15,6 +15,7 @@ from .TriChartPreparation import *  # noqa: F401,F403
 from .TriChartCurvature import *  # noqa: F401,F403
 from .TriChartFeatures import *  # noqa: F401,F403
 from .TriChartBaseComplex import *  # noqa: F401,F403
+from .TriChartGeometryImages import *  # noqa: F401,F403
 
 try:
     from . import _config_build as _config  # running from a build tree
@@ -24,7 +25,8 @@ except ImportError:
 __version__ = _config.VERSION
 
 from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features,  # noqa: E402,F401
-                       base_complex, build, TriChartError)
+                       base_complex, trace_paths, geometry_images, rebuild, surface_distance,
+                       read_atlas, write_atlas, atlas_charts, build, TriChartError)
 
 
 def plugin_path():

@@ -36,7 +36,7 @@ class ProgressBar:
 
 
 def _needs_display(args):
-    return args.command == "build" and not args.no_image
+    return args.command == "build" and args.stages and not args.no_image
 
 
 def _reexec_under_xvfb():
@@ -70,24 +70,68 @@ def cmd_build(args):
 
     bar = None if args.quiet else ProgressBar()
     start = time.perf_counter()
+    options = {"max_level": args.max_level, "sample_budget": args.budget}
     try:
-        result = build(args.mesh, args.output, progress=bar, image=not args.no_image,
+        result = build(args.mesh, args.output, stages=args.stages, progress=bar,
+                       image=not args.no_image,
                        cluster_options={"number_of_clusters": args.clusters},
-                       base_options={"target_faces": args.base_faces})
+                       base_options={"target_faces": args.base_faces},
+                       geometry_options=options)
     finally:
         if bar:
             bar.close()
     seconds = time.perf_counter() - start
-    surface, crest = result["surface"], result["crest_lines"]
+    surface = result["surface"]
+    charts = result["atlas"].GetBlock(0)
+    levels = charts.GetColumnByName("MaxLevel")
+    finest = max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
+    size = os.path.getsize(result["files"]["atlas"])
     print(f"{args.mesh}: {surface.GetNumberOfPoints()} points, "
-          f"{surface.GetNumberOfCells()} triangles, {crest.GetNumberOfCells()} crest lines, "
+          f"{surface.GetNumberOfCells()} triangles, "
           f"{result['feature_lines'].GetNumberOfCells()} feature lines, "
           f"{result['corners'].GetNumberOfPoints()} corners, "
-          f"{result['base_complex'].GetNumberOfPolys()} base triangles ({seconds:.2f} s)")
+          f"{result['base_complex'].GetNumberOfPolys()} base triangles, "
+          f"{charts.GetNumberOfRows()} charts up to level {finest} ({seconds:.2f} s)")
+    print("  seconds per stage: " + ", ".join(f"{name} {value:.2f}"
+                                              for name, value in result["seconds"].items()))
+    print(f"  atlas: {size / 1e6:.2f} MB, {size / surface.GetNumberOfCells():.1f} bytes per "
+          f"input triangle")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():
         print(f"  wrote {name}: {path}")
+    return 0
+
+
+def cmd_mesh(args):
+    from .pipeline import read_atlas, rebuild, write_vtp
+
+    atlas = read_atlas(args.atlas)
+    mesh = rebuild(atlas, level=args.level)
+    print(f"{args.atlas} at level {args.level}: {mesh.GetNumberOfPoints()} points, "
+          f"{mesh.GetNumberOfPolys()} triangles")
+    print(f"wrote {write_vtp(mesh, args.output)}")
+    return 0
+
+
+def cmd_eval(args):
+    from .pipeline import prepare, read_atlas, read_mesh, rebuild, surface_distance
+
+    reference, _ = prepare(read_mesh(args.mesh))
+    atlas = read_atlas(args.atlas)
+    levels = atlas.GetBlock(0).GetColumnByName("MaxLevel")
+    finest = max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
+    print(f"{args.atlas} against {args.mesh} ({reference.GetNumberOfPolys()} triangles)")
+    print(f"{'level':>5} {'points':>9} {'triangles':>10} {'Hausdorff':>12} {'RMS':>12} "
+          f"{'Hausdorff/diag':>15} {'RMS/diag':>10}")
+    for level in range(finest + 1):
+        mesh = rebuild(atlas, level=level)
+        _, figures = surface_distance(mesh, reference, samples_per_mesh=args.samples)
+        diagonal = figures["diagonal"] or 1.0
+        print(f"{level:>5} {mesh.GetNumberOfPoints():>9} {mesh.GetNumberOfPolys():>10} "
+              f"{figures['hausdorff']:>12.6g} {figures['rms']:>12.6g} "
+              f"{100 * figures['hausdorff'] / diagonal:>14.4f}% "
+              f"{100 * figures['rms'] / diagonal:>9.4f}%")
     return 0
 
 
@@ -106,15 +150,31 @@ def main(argv=None):
         prog="trichart", description="TriChart: triangle-chart geometry images and LOD.")
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("info", help="versions, build type and the ParaView plugin path")
-    p = sub.add_parser("build", help="run the pipeline on a mesh and write every stage")
+    p = sub.add_parser("build", help="run the whole static pipeline and write the atlas")
     p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk)")
-    p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("-o", "--output", required=True, help="atlas file to write (.exr)")
+    p.add_argument("--stages", metavar="DIR",
+                   help="also write every stage as VTP (and pictures) into this folder")
     p.add_argument("--clusters", type=int, default=16,
                    help="number of spectral clusters (default 16)")
     p.add_argument("--base-faces", type=int, default=100,
                    help="target number of base-complex triangles (default 100)")
-    p.add_argument("--no-image", action="store_true", help="do not render a PNG")
+    p.add_argument("--max-level", type=int, default=8,
+                   help="largest chart level, 2^d + 1 samples per side (default 8)")
+    p.add_argument("--budget", type=int, default=0,
+                   help="total samples at the finest levels (default: the mesh's point count)")
+    p.add_argument("--no-image", action="store_true", help="no pictures with --stages")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p = sub.add_parser("mesh", help="rebuild a mesh from an atlas at one level")
+    p.add_argument("atlas", help="atlas file (.exr)")
+    p.add_argument("--level", type=int, default=-1,
+                   help="level of every chart, capped by its finest (default -1: finest)")
+    p.add_argument("-o", "--output", required=True, help="output .vtp file")
+    p = sub.add_parser("eval", help="error of every level of an atlas against a mesh")
+    p.add_argument("mesh", help="the original mesh")
+    p.add_argument("atlas", help="atlas file (.exr)")
+    p.add_argument("--samples", type=int, default=0,
+                   help="samples per surface (default: chosen from the triangle counts)")
     p = sub.add_parser("prepare", help="clean a mesh and write it as VTP")
     p.add_argument("mesh")
     p.add_argument("-o", "--output", required=True, help="output .vtp file")
@@ -134,7 +194,9 @@ def main(argv=None):
     vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)
 
     try:
-        return {"info": cmd_info, "build": cmd_build, "prepare": cmd_prepare}[args.command](args)
+        commands = {"info": cmd_info, "build": cmd_build, "mesh": cmd_mesh, "eval": cmd_eval,
+                    "prepare": cmd_prepare}
+        return commands[args.command](args)
     except TriChartError as error:
         print(f"trichart: error: {error}", file=sys.stderr)
         return 2

@@ -7,8 +7,8 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
-from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures, TriChartIO,
-               TriChartPreparation)
+from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures,
+               TriChartGeometryImages, TriChartIO, TriChartPreparation)
 
 
 class TriChartError(RuntimeError):
@@ -139,6 +139,92 @@ def base_complex(features, progress=None, **options):
     return _output(f, 0), _output(f, 1)
 
 
+def trace_paths(parameterized, progress=None):
+    """tcPathTracing on base_complex's second output; returns (patches with PatchId, paths)."""
+    f = TriChartGeometryImages.tcPathTracing()
+    f.SetInputData(parameterized)
+    run(f, "paths", progress)
+    return _output(f, 0), _output(f, 1)
+
+
+def _multiblock(algorithm, port=0):
+    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+
+    copy = vtkMultiBlockDataSet()
+    copy.ShallowCopy(algorithm.GetOutputDataObject(port))
+    return copy
+
+
+def geometry_images(patches, resampled_arrays=(), progress=None, **options):
+    """tcGeometryImages on trace_paths' first output; returns the atlas (a multiblock of the
+    chart table and one image per mip step).
+
+    Options: sample_budget, min_level, max_level, curvature_weight.
+    """
+    f = _configure(TriChartGeometryImages.tcGeometryImages(), options)
+    for name in resampled_arrays:
+        f.AddResampledArray(name)
+    f.SetInputData(patches)
+    run(f, "images", progress)
+    return _multiblock(f)
+
+
+def rebuild(atlas, level=-1, chart_levels=None, progress=None):
+    """tcGeometryImageMesh: the mesh of `atlas` with every chart at `level` (-1: its finest),
+    or at chart_levels[c] for chart c, stitched without cracks."""
+    f = TriChartGeometryImages.tcGeometryImageMesh()
+    f.SetInputData(atlas)
+    f.SetLevel(level)
+    if chart_levels is not None:
+        from vtkmodules.vtkCommonCore import vtkIntArray
+
+        levels = vtkIntArray()
+        for value in chart_levels:
+            levels.InsertNextValue(int(value))
+        f.SetChartLevels(levels)
+    run(f, "rebuild", progress)
+    return _output(f)
+
+
+def surface_distance(mesh, reference, progress=None, **options):
+    """tcSurfaceDistance; returns (mesh with point array Distance, figures) where figures has
+    hausdorff, mean, rms (absolute) and diagonal (of the reference's bounding box).
+
+    Options: samples_per_mesh, seed.
+    """
+    f = _configure(TriChartGeometryImages.tcSurfaceDistance(), options)
+    f.SetInputData(0, mesh)
+    f.SetInputData(1, reference)
+    run(f, "distance", progress)
+    figures = {"hausdorff": f.GetHausdorff(), "mean": f.GetMeanDistance(),
+               "rms": f.GetRmsDistance(), "diagonal": f.GetDiagonal()}
+    return _output(f), figures
+
+
+def read_atlas(path, progress=None):
+    """Read an atlas file (.exr) into the atlas multiblock."""
+    reader = TriChartIO.tcAtlasReader()
+    reader.SetFileName(str(path))
+    run(reader, "read atlas", progress)
+    return _multiblock(reader)
+
+
+def write_atlas(atlas, path, progress=None):
+    """Write the atlas multiblock as one OpenEXR file (temporary file renamed at the end)."""
+    writer = TriChartIO.tcAtlasWriter()
+    writer.SetFileName(str(path))
+    writer.SetInputData(atlas)
+    run(writer, "write atlas", progress)
+    if writer.GetErrorCode() != 0:
+        raise TriChartError(f"cannot write the atlas '{path}'")
+    return os.path.abspath(str(path))
+
+
+def atlas_charts(atlas):
+    """The chart table of an atlas multiblock (vtkTable)."""
+    return atlas.GetBlock(0)
+
+
 def write_vtp(mesh, path):
     """Write `mesh` as VTP; the file appears only when complete (temporary file, then rename)."""
     path = os.path.abspath(str(path))
@@ -159,37 +245,60 @@ def write_vtp(mesh, path):
     return path
 
 
-def build(path, outdir, progress=None, image=True, curvature_options=None,
-          cluster_options=None, feature_options=None, base_options=None):
-    """The main job, as far as the pipeline goes today: read, prepare, curvature, spectral
-    clusters, feature refinement, base complex with MAPS.
+def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
+          cluster_options=None, feature_options=None, base_options=None,
+          geometry_options=None):
+    """The static pipeline: read, prepare, curvature, spectral clusters, feature refinement,
+    base complex with MAPS, path tracing, geometry images; writes the atlas to `atlas_path`.
 
-    Writes prepared.vtp, curvature.vtp, crest_lines.vtp, clusters.vtp, cluster_boundaries.vtp,
-    features.vtp, feature_lines.vtp, corners.vtp, base_complex.vtp, parameterized.vtp and (with
-    image=True) curvature.png, features.png and base_complex.png into `outdir`; returns a dict
-    with the outputs, the written paths and the preparation report.
+    With `stages` (a folder) every stage is also written there as VTP (prepared, curvature,
+    crest_lines, clusters, cluster_boundaries, features, feature_lines, corners, base_complex,
+    parameterized, patches, paths, and the rebuilt mesh at the finest level as rebuilt), and,
+    with image=True, pictures of curvature, features and the base complex. Returns a dict with
+    every output, the written paths, the preparation report and the seconds per stage.
     """
-    os.makedirs(outdir, exist_ok=True)
-    mesh = read_mesh(path, progress)
-    clean, report = prepare(mesh, progress=progress)
-    surface, crest = curvature(clean, progress=progress, **(curvature_options or {}))
-    clustered, boundaries = cluster(surface, progress=progress, **(cluster_options or {}))
-    features, lines, corners = refine_features(clustered, progress=progress,
-                                               **(feature_options or {}))
-    base, parameterized = base_complex(features, progress=progress, **(base_options or {}))
+    import time
+
+    seconds = {}
+
+    def timed(name, function, *args, **kwargs):
+        start = time.perf_counter()
+        value = function(*args, **kwargs)
+        seconds[name] = time.perf_counter() - start
+        return value
+
+    mesh = timed("read", read_mesh, path, progress)
+    clean, report = timed("prepare", prepare, mesh, progress=progress)
+    surface, crest = timed("curvature", curvature, clean, progress=progress,
+                           **(curvature_options or {}))
+    clustered, boundaries = timed("clusters", cluster, surface, progress=progress,
+                                  **(cluster_options or {}))
+    features, lines, corners = timed("features", refine_features, clustered, progress=progress,
+                                     **(feature_options or {}))
+    base, parameterized = timed("base", base_complex, features, progress=progress,
+                                **(base_options or {}))
+    patches, paths = timed("paths", trace_paths, parameterized, progress=progress)
+    atlas = timed("images", geometry_images, patches, progress=progress,
+                  **(geometry_options or {}))
+    os.makedirs(os.path.dirname(os.path.abspath(str(atlas_path))), exist_ok=True)
+    files = {"atlas": timed("write", write_atlas, atlas, atlas_path, progress)}
     outputs = {"prepared": clean, "curvature": surface, "crest_lines": crest,
                "clusters": clustered, "cluster_boundaries": boundaries, "features": features,
                "feature_lines": lines, "corners": corners, "base_complex": base,
-               "parameterized": parameterized}
-    files = {name: write_vtp(data, os.path.join(outdir, f"{name}.vtp"))
-             for name, data in outputs.items()}
-    if image:
-        from .render import render_base_complex, render_curvature, render_features
+               "parameterized": parameterized, "patches": patches, "paths": paths}
+    if stages:
+        os.makedirs(stages, exist_ok=True)
+        outputs["rebuilt"] = rebuild(atlas, progress=progress)
+        files.update({name: write_vtp(data, os.path.join(stages, f"{name}.vtp"))
+                      for name, data in outputs.items()})
+        if image:
+            from .render import render_base_complex, render_curvature, render_features
 
-        files["curvature_image"] = render_curvature(surface, crest,
-                                                    os.path.join(outdir, "curvature.png"))
-        files["features_image"] = render_features(features, lines, corners,
-                                                  os.path.join(outdir, "features.png"))
-        files["base_complex_image"] = render_base_complex(
-            base, parameterized, os.path.join(outdir, "base_complex.png"))
-    return dict(outputs, files=files, report=report, mesh=clean, surface=surface)
+            files["curvature_image"] = render_curvature(
+                surface, crest, os.path.join(stages, "curvature.png"))
+            files["features_image"] = render_features(
+                features, lines, corners, os.path.join(stages, "features.png"))
+            files["base_complex_image"] = render_base_complex(
+                base, parameterized, os.path.join(stages, "base_complex.png"))
+    return dict(outputs, atlas=atlas, files=files, report=report, mesh=clean, surface=surface,
+                seconds=seconds)

@@ -5,6 +5,7 @@
 #include "tc/mesh_topology.h"
 #include "tc/off_io.h"
 
+#include "pipeline_fixture.h"
 #include "test_data.h"
 #include "test_progress.h"
 
@@ -25,83 +26,6 @@
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
-
-/// An OFF file as a triangle mesh (polygons, if any, split into fans).
-tc::TriMesh loadMesh(const std::string& path)
-{
-  const tc::PolygonSoup soup = tc::readOFF(path);
-  tc::TriMesh mesh;
-  mesh.points = soup.points;
-  for (int64_t p = 0; p < soup.numPolygons(); ++p)
-  {
-    const int64_t b = soup.offsets[p], n = soup.offsets[p + 1] - b;
-    for (int64_t i = 1; i + 1 < n; ++i)
-    {
-      mesh.triangles.push_back(static_cast<int32_t>(soup.connectivity[b]));
-      mesh.triangles.push_back(static_cast<int32_t>(soup.connectivity[b + i]));
-      mesh.triangles.push_back(static_cast<int32_t>(soup.connectivity[b + i + 1]));
-    }
-  }
-  return mesh;
-}
-
-std::array<double, 3> faceNormal(const tc::TriMesh& m, int64_t f)
-{
-  const auto a = m.point(m.triangles[3 * f]), b = m.point(m.triangles[3 * f + 1]),
-             c = m.point(m.triangles[3 * f + 2]);
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  std::array<double, 3> n = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-    u[0] * v[1] - u[1] * v[0] };
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (double& x : n)
-  {
-    x = len > 0 ? x / len : 0.0;
-  }
-  return n;
-}
-
-/// Stand-in for the feature stage (someone else's): sharp edges (dihedral angle over 45
-/// degrees) are the feature curves, their ends the feature vertices, and the vertices where a
-/// number of sharp edges other than 2 meet are corners.
-struct Features
-{
-  std::vector<uint8_t> featureVertex;
-  std::vector<uint8_t> cornerVertex;
-  std::vector<int32_t> featureEdges;
-};
-
-Features sharpFeatures(const tc::TriMesh& mesh, double degrees = 45.0)
-{
-  Features out;
-  const tc::EdgeTable et = tc::buildEdgeTable(mesh.triangles);
-  const double cosLimit = std::cos(degrees * kPi / 180.0);
-  std::vector<int> count(mesh.numPoints(), 0);
-  for (int64_t e = 0; e < et.numEdges(); ++e)
-  {
-    if (et.valence(e) != 2)
-    {
-      continue;
-    }
-    const auto n0 = faceNormal(mesh, et.edgeFaces[et.faceOffsets[e]]);
-    const auto n1 = faceNormal(mesh, et.edgeFaces[et.faceOffsets[e] + 1]);
-    if (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cosLimit)
-    {
-      out.featureEdges.push_back(et.vertices[2 * e]);
-      out.featureEdges.push_back(et.vertices[2 * e + 1]);
-      ++count[et.vertices[2 * e]];
-      ++count[et.vertices[2 * e + 1]];
-    }
-  }
-  out.featureVertex.resize(mesh.numPoints());
-  out.cornerVertex.resize(mesh.numPoints());
-  for (int64_t v = 0; v < mesh.numPoints(); ++v)
-  {
-    out.featureVertex[v] = count[v] > 0;
-    out.cornerVertex[v] = count[v] > 0 && count[v] != 2;
-  }
-  return out;
-}
 
 int64_t eulerCharacteristic(const std::vector<int32_t>& triangles, int64_t numPoints)
 {
@@ -431,62 +355,18 @@ FlipCount countFlips(
   return out;
 }
 
-/// One mesh of the property tests, simplified once with default options and shared by them.
-struct Case
-{
-  tc::TriMesh mesh;
-  Features features;
-  tc::BaseComplexResult result;
-};
-
-const Case* caseFor(const std::string& path)
-{
-  static std::map<std::string, std::unique_ptr<Case>> cache;
-  if (path.empty())
-  {
-    return nullptr;
-  }
-  auto& slot = cache[path];
-  if (!slot)
-  {
-    slot = std::make_unique<Case>();
-    slot->mesh = loadMesh(path);
-    slot->features = sharpFeatures(slot->mesh);
-    slot->result = tc::buildBaseComplex(slot->mesh, slot->features.featureVertex,
-      slot->features.cornerVertex, slot->features.featureEdges);
-    const auto& r = slot->result;
-    std::printf("[ base     ] %s: %lld -> %zu triangles, %lld collapses, max error "
-                "%.3g, target %s, %lld snapped\n",
-      path.c_str(), static_cast<long long>(slot->mesh.numTriangles()), r.baseTriangles.size() / 3,
-      static_cast<long long>(r.collapses), r.maxCollapseError,
-      r.reachedTarget ? "reached" : "not reached", static_cast<long long>(r.snappedPoints));
-  }
-  return slot.get();
-}
-
-std::string meshPath(const std::string& name)
-{
-  // fandisk and bunny_npm are bundled with the repository; the others come from shared data.
-  if (name == "fandisk" || name == "bunny_npm")
-  {
-    return tctest::testingData("meshes/" + name + ".off");
-  }
-  const std::string folder = name == "couplingdown" ? "cad/" : "static_small/";
-  return tctest::sharedData(folder + name + ".off");
-}
-
 class BaseComplexOnMesh : public ::testing::TestWithParam<std::string>
 {
 protected:
   void SetUp() override
   {
-    Case_ = caseFor(meshPath(GetParam()));
+    Case_ = tctest::pipelineCase(tctest::pipelineMeshPath(GetParam()));
     if (!Case_)
     {
       GTEST_SKIP() << GetParam() << " is not in the shared data";
     }
   }
-  const Case* Case_ = nullptr;
+  const tctest::PipelineCase* Case_ = nullptr;
 };
 } // namespace
 
@@ -736,7 +616,7 @@ TEST(BaseComplex, CubeEdgesSimplifyAlongThemselvesIntoTwelveBaseEdges)
   // side can only collapse into itself (never into its border curve), which leaves one vertex
   // per side: 8 + 6 base vertices, 24 base triangles.
   const tc::TriMesh cube = gridCube(8);
-  const Features features = sharpFeatures(cube);
+  const tctest::Features features = tctest::sharpFeatures(cube);
   ASSERT_EQ(features.featureEdges.size(), 2u * 12 * 8);
   tc::BaseComplexOptions options;
   options.targetFaces = 4;
@@ -774,8 +654,8 @@ TEST(BaseComplex, Bunny00ReachesATargetOf100)
   {
     GTEST_SKIP() << "static_medium/bunny00.off is not in the shared data";
   }
-  const tc::TriMesh mesh = loadMesh(path);
-  const Features features = sharpFeatures(mesh);
+  const tc::TriMesh mesh = tctest::loadMesh(path);
+  const tctest::Features features = tctest::sharpFeatures(mesh);
   tc::BaseComplexOptions options;
   options.targetFaces = 100;
   const tc::BaseComplexResult r = tc::buildBaseComplex(
@@ -795,7 +675,7 @@ TEST(BaseComplex, Bunny00ReachesATargetOf100)
 
 TEST(BaseComplex, MaxErrorStopsTheSimplificationEarly)
 {
-  const tc::TriMesh mesh = loadMesh(tctest::testingData("meshes/bunny_npm.off"));
+  const tc::TriMesh mesh = tctest::loadMesh(tctest::testingData("meshes/bunny_npm.off"));
   tc::BaseComplexOptions options;
   options.targetFaces = 100;
   options.maxError = 1e-6;
@@ -811,8 +691,8 @@ TEST(BaseComplex, MaxErrorStopsTheSimplificationEarly)
 
 TEST(BaseComplex, IsDeterministic)
 {
-  const tc::TriMesh mesh = loadMesh(tctest::testingData("meshes/fandisk.off"));
-  const Features f = sharpFeatures(mesh);
+  const tc::TriMesh mesh = tctest::loadMesh(tctest::testingData("meshes/fandisk.off"));
+  const tctest::Features f = tctest::sharpFeatures(mesh);
   const auto a = tc::buildBaseComplex(mesh, f.featureVertex, f.cornerVertex, f.featureEdges);
   const auto b = tc::buildBaseComplex(mesh, f.featureVertex, f.cornerVertex, f.featureEdges);
   EXPECT_EQ(a.baseVertices, b.baseVertices);
@@ -824,7 +704,7 @@ TEST(BaseComplex, IsDeterministic)
 
 TEST(BaseComplex, ReportsProgressAndHonoursAbort)
 {
-  const tc::TriMesh mesh = loadMesh(tctest::testingData("meshes/bunny_npm.off"));
+  const tc::TriMesh mesh = tctest::loadMesh(tctest::testingData("meshes/bunny_npm.off"));
   tctest::expectProgressAndAbort([&](const tc::Progress& p)
     { tc::buildBaseComplex(mesh, {}, {}, {}, {}, p); },
     1, [calls = 0](double) mutable { return ++calls < 2; });
@@ -832,7 +712,7 @@ TEST(BaseComplex, ReportsProgressAndHonoursAbort)
 
 TEST(BaseComplex, RejectsInputThatIsNotAClosedManifoldOrDoesNotMatch)
 {
-  tc::TriMesh mesh = loadMesh(tctest::testingData("meshes/bunny_npm.off"));
+  tc::TriMesh mesh = tctest::loadMesh(tctest::testingData("meshes/bunny_npm.off"));
   const int64_t nv = mesh.numPoints();
   tc::TriMesh open = mesh;
   open.triangles.resize(open.triangles.size() - 3);

@@ -4,7 +4,7 @@ import os
 import sys
 
 from paraview import servermanager
-from paraview.simple import LoadPlugin, UpdatePipeline
+from paraview.simple import LoadPlugin, OutputPort, UpdatePipeline
 
 plugin = os.environ["TRICHART_PLUGIN"]
 data = os.environ["TRICHART_TESTING_DATA"]
@@ -20,7 +20,9 @@ def check(condition, what):
 LoadPlugin(plugin, remote=False, ns=globals())
 # paraview.simple names the functions after the proxies' labels.
 for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
-             "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex"):
+             "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex",
+             "TriChartPathTracing", "TriChartGeometryImages", "TriChartGeometryImageMesh",
+             "TriChartSurfaceDistance", "TriChartAtlasReader"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)
@@ -63,6 +65,26 @@ check(base.TargetFaces == 100 and base.MaxError == 0.0, "base complex defaults")
 UpdatePipeline(proxy=base)
 check(0 < base.GetDataInformation(0).GetNumberOfCells() < 12946, "a coarse base complex")
 check(base.GetDataInformation(1).GetNumberOfPoints() == 6475, "every input vertex parameterized")
+
+paths = TriChartPathTracing(Input=OutputPort(base, 1))  # noqa: F821
+images = TriChartGeometryImages(Input=paths)  # noqa: F821
+check(images.MinLevel == 2 and images.MaxLevel == 8 and images.SampleBudget == 0
+      and images.CurvatureWeight == 1.0, "geometry image defaults match the C++ defaults")
+rebuilt = TriChartGeometryImageMesh(Input=images, Level=2)  # noqa: F821
+check(TriChartGeometryImageMesh(Input=images).Level == -1, "rebuild default level")  # noqa: F821
+distance = TriChartSurfaceDistance(Input=rebuilt, Reference=prep)  # noqa: F821
+UpdatePipeline(proxy=distance)
+patches = servermanager.Fetch(paths)
+check(patches.GetCellData().GetArray("PatchId") is not None, "patches carry PatchId")
+check(paths.GetDataInformation(1).GetNumberOfCells() ==
+      3 * base.GetDataInformation(0).GetNumberOfCells() // 2, "one path per base edge")
+mesh = servermanager.Fetch(distance)
+check(mesh.GetNumberOfPolys() > 0 and mesh.GetCellData().GetArray("ChartId") is not None,
+      "a mesh rebuilt from the atlas, with ChartId")
+check(mesh.GetPointData().GetArray("Distance") is not None, "point array Distance")
+hausdorff = mesh.GetFieldData().GetArray("RelativeHausdorff")
+check(hausdorff is not None and 0 < hausdorff.GetValue(0) < 0.05,
+      "level 2 of fandisk is within 5% of the diagonal")
 
 print("paraview plugin test:", "FAILED" if failures else "passed")
 sys.exit(1 if failures else 0)

@@ -18,23 +18,58 @@ def test_info_prints_versions_and_plugin():
     assert "build)" in r.stdout and "ParaView plugin" in r.stdout
 
 
-def test_build_writes_stages_and_a_picture(testing_data, tmp_path):
-    r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", tmp_path)
+def test_build_writes_the_atlas_stages_and_pictures(testing_data, tmp_path):
+    atlas = tmp_path / "bunny.exr"
+    r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", atlas,
+            "--stages", tmp_path / "stages")
     assert r.returncode == 0, r.stderr
     for name in ("prepared.vtp", "curvature.vtp", "crest_lines.vtp", "clusters.vtp",
                  "features.vtp", "feature_lines.vtp", "corners.vtp", "base_complex.vtp",
-                 "parameterized.vtp", "curvature.png", "features.png", "base_complex.png"):
-        assert (tmp_path / name).stat().st_size > 0, name
-    assert "3674 triangles" in r.stdout
-    with open(tmp_path / "curvature.png", "rb") as f:
+                 "parameterized.vtp", "patches.vtp", "paths.vtp", "rebuilt.vtp",
+                 "curvature.png", "features.png", "base_complex.png"):
+        assert (tmp_path / "stages" / name).stat().st_size > 0, name
+    assert "3674 triangles" in r.stdout and "charts up to level" in r.stdout
+    assert "bytes per input triangle" in r.stdout
+    with open(atlas, "rb") as f:
+        assert f.read(4) == b"\x76\x2f\x31\x01"  # the OpenEXR magic number
+    with open(tmp_path / "stages" / "curvature.png", "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
+def test_mesh_and_eval_read_the_atlas(testing_data, tmp_path):
+    atlas = tmp_path / "cube.exr"
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", atlas, "--clusters", "6", "-q")
+    assert r.returncode == 0, r.stderr
+    r = run("mesh", atlas, "--level", "1", "-o", tmp_path / "level1.vtp")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "level1.vtp").stat().st_size > 0
+    r = run("eval", testing_data / "meshes" / "cube.off", atlas)
+    assert r.returncode == 0, r.stderr
+    rows = [line.split() for line in r.stdout.splitlines()
+            if line.split() and line.split()[0].isdigit()]
+    assert len(rows) >= 2, r.stdout
+    # A cube is flat between its feature edges: every level rebuilds it almost exactly.
+    for row in rows:
+        assert float(row[5].rstrip("%")) < 0.1, r.stdout
+
+
+def test_a_corrupt_atlas_is_refused(testing_data, tmp_path):
+    atlas = tmp_path / "cube.exr"
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", atlas, "--clusters", "6", "-q")
+    assert r.returncode == 0, r.stderr
+    data = atlas.read_bytes()
+    atlas.write_bytes(data[: len(data) // 2])
+    r = run("mesh", atlas, "-o", tmp_path / "out.vtp")
+    assert r.returncode == 2
+    assert "trichart: error:" in r.stderr and "cube.exr" in r.stderr
+    assert not (tmp_path / "out.vtp").exists()
+
+
 def test_build_shows_progress(testing_data, tmp_path):
-    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image",
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path / "cube.exr",
             "--clusters", "6")
     assert r.returncode == 0, r.stderr
-    for stage in ("curvature", "clusters", "features", "base"):
+    for stage in ("curvature", "clusters", "features", "base", "paths", "images"):
         assert f"{stage}: 100%" in r.stderr
 
 
@@ -48,14 +83,14 @@ def test_bad_files_fail_with_a_message_and_write_nothing(tmp_path, content, mess
     if content is not None:
         mesh.write_text(content)
     out = tmp_path / "out"
-    r = run("build", mesh, "-o", out, "--no-image")
+    r = run("build", mesh, "-o", tmp_path / "bad.exr", "--stages", out, "--no-image")
     assert r.returncode == 2
     assert "trichart: error:" in r.stderr and message in r.stderr
-    assert not (out / "prepared.vtp").exists()
+    assert not (out / "prepared.vtp").exists() and not (tmp_path / "bad.exr").exists()
 
 
 def test_too_many_clusters_is_a_clear_error(testing_data, tmp_path):
-    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path, "--no-image")
+    r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path / "cube.exr")
     assert r.returncode == 2
     assert "12" in r.stderr and "16" in r.stderr
 

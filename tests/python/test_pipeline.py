@@ -9,7 +9,8 @@ from trichart.pipeline import TriChartError
 
 def test_filters_are_wrapped():
     for name in ("tcMeshReader", "tcMeshPreparation", "tcCurvature", "tcSpectralClustering",
-                 "tcFeatureRefinement", "tcBaseComplex"):
+                 "tcFeatureRefinement", "tcBaseComplex", "tcPathTracing", "tcGeometryImages",
+                 "tcGeometryImageMesh", "tcSurfaceDistance", "tcAtlasReader", "tcAtlasWriter"):
         assert hasattr(trichart, name), name
     assert trichart.tcCurvature().GetNumberOfOutputPorts() == 2
 
@@ -60,14 +61,19 @@ def test_non_triangles_are_refused_by_curvature(tmp_path):
         trichart.curvature(mesh)
 
 
-def test_build_writes_every_stage(testing_data, tmp_path):
-    result = trichart.build(testing_data / "meshes" / "cube.off", tmp_path / "out", image=False,
+def test_build_writes_the_atlas_and_every_stage(testing_data, tmp_path):
+    result = trichart.build(testing_data / "meshes" / "cube.off", tmp_path / "cube.exr",
+                            stages=tmp_path / "out", image=False,
                             cluster_options={"number_of_clusters": 6})
     for name in ("prepared", "curvature", "crest_lines", "clusters", "cluster_boundaries",
-                 "features", "feature_lines", "corners", "base_complex", "parameterized"):
+                 "features", "feature_lines", "corners", "base_complex", "parameterized",
+                 "patches", "paths", "rebuilt"):
         assert (tmp_path / "out" / f"{name}.vtp").stat().st_size > 0, name
+    assert (tmp_path / "cube.exr").stat().st_size > 0
     assert result["surface"].GetNumberOfPolys() == 12
+    assert set(result["seconds"]) >= {"curvature", "base", "paths", "images", "write"}
     assert not list((tmp_path / "out").glob(".tmp-*"))
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
 
 
 def test_plugin_path_points_at_the_plugin():

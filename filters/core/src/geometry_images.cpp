@@ -939,7 +939,8 @@ struct PackUnit
 /// Shelf packing of the rectangles of image k (tallest first, left to right, rows bottom to
 /// top); returns the lower-left corner of each unit present (x = -1 for a unit absent from this
 /// image) and the image size. The width is a multiple of 4 from the widest rectangle up to
-/// twice sqrt(total area): the one that gives the smallest image (the squarer one on a tie).
+/// twice sqrt(total area): the one that gives the shortest longer side (GPU textures are
+/// limited in width and height, not area), the smaller image on a tie.
 void packImage(const std::vector<PackUnit>& units, const std::vector<int32_t>& level, int32_t k,
   std::vector<std::array<int32_t, 2>>& corner, int32_t& width, int32_t& height)
 {
@@ -993,8 +994,9 @@ void packImage(const std::vector<PackUnit>& units, const std::vector<int32_t>& l
   for (int32_t w = first + 4; w <= last; w += 4)
   {
     const int32_t h = shelves(w, nullptr);
+    const int32_t side = std::max(w, h), bestSide = std::max(width, height);
     const int64_t size = int64_t(w) * h, best = int64_t(width) * height;
-    if (size < best || (size == best && std::abs(w - h) < std::abs(width - height)))
+    if (side < bestSide || (side == bestSide && size < best))
     {
       width = w;
       height = h;

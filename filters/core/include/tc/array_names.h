@@ -42,6 +42,42 @@ constexpr const char* kBaseBarycentric = "BaseBarycentric"; ///< input point: 3 
 constexpr const char* kBaseEdgeIsFeature =
   "BaseEdgeIsFeature"; ///< base cell: 3 flags, side (i, i+1)
 
+// tcPathTracing
+constexpr const char* kPatchId = "PatchId";       ///< cell: base face (= patch, = chart) of a piece
+constexpr const char* kBaseEdgeId = "BaseEdgeId"; ///< path cell: the base edge it traces
+constexpr const char* kSteinerEdge = "SteinerEdge"; ///< point: 2 input points of its input edge (-1 -1)
+constexpr const char* kSteinerParameter = "SteinerParameter"; ///< point: t along that edge
+constexpr const char* kBaseVertexIds = "BaseVertexIds"; ///< field: input point of each base vertex
+constexpr const char* kBaseTriangles = "BaseTriangles"; ///< field: #Fb x 3 base vertex indices
+constexpr const char* kBaseEdges = "BaseEdges";         ///< field: #Eb x 2 base vertex indices
+constexpr const char* kFaceEdges = "FaceEdges";         ///< field: #Fb x 3 base edge of each side
+constexpr const char* kPathOffsets = "PathOffsets";     ///< field: #Eb + 1 offsets into PathPoints
+constexpr const char* kPathPoints = "PathPoints";       ///< field: point ids of every path
+
+// tcGeometryImages / tcGeometryImageMesh (the atlas as a multiblock: block 0 the chart table,
+// block 1 one vtkImageData per mip step)
+constexpr const char* kChartId = "ChartId";           ///< cell / table: chart of a triangle
+constexpr const char* kLevel = "Level";               ///< cell: level it was rebuilt at
+constexpr const char* kMaxLevel = "MaxLevel";         ///< table: d_max
+constexpr const char* kChartCorners = "CornerVertices"; ///< table: 3 base vertices (input ids)
+constexpr const char* kNeighborChart = "NeighborChart";   ///< table: chart across each side
+constexpr const char* kNeighborSide = "NeighborSide";     ///< table: its side
+constexpr const char* kFeatureSide = "FeatureSide";       ///< table: side follows a feature
+constexpr const char* kPartner = "Partner";               ///< table: chart sharing the rectangle
+constexpr const char* kRotated = "Rotated";               ///< table: upper-right, turned 180 deg
+constexpr const char* kOrigin = "Origin";     ///< table: 2 x levels texel of sample (0,0) per image
+constexpr const char* kBox = "OrientedBox";   ///< table: 4 corners (c0 and its 3 neighbours)
+constexpr const char* kLevelError = "LevelError"; ///< table: error per level (NaN: none)
+constexpr const char* kAtlasSource = "AtlasSource";       ///< field: what it was built from
+constexpr const char* kInputPoints = "InputPoints";       ///< field: input point count
+constexpr const char* kInputTriangles = "InputTriangles"; ///< field: input triangle count
+constexpr const char* kInputDiagonal = "InputDiagonal";   ///< field: input bounding-box diagonal
+constexpr const char* kSampleChart = "SampleChart"; ///< rebuilt point: chart, i, j it was read from
+
+// tcSurfaceDistance
+constexpr const char* kDistance = "Distance"; ///< point: distance to the other surface
+constexpr const char* kDistanceReport = "DistanceReport"; ///< field: the figures, as text
+
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
 } // namespace tc

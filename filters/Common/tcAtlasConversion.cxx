@@ -1,0 +1,322 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcAtlasConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/errors.h"
+
+#include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkIntArray.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkPointData.h>
+#include <vtkStringArray.h>
+#include <vtkTable.h>
+#include <vtkTypeInt64Array.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace tcvtk
+{
+namespace
+{
+vtkSmartPointer<vtkIntArray> intColumn(const char* name, int components, vtkIdType rows)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(rows);
+  array->Fill(-1);
+  return array;
+}
+
+vtkSmartPointer<vtkDoubleArray> doubleColumn(const char* name, int components, vtkIdType rows)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(rows);
+  array->Fill(std::numeric_limits<double>::quiet_NaN());
+  return array;
+}
+
+/// The column `name` as an int array of `rows` x at least `components`, or nullptr.
+vtkIntArray* intColumnOf(vtkTable* table, const char* name, int components, std::string& error)
+{
+  auto* array = vtkIntArray::SafeDownCast(table->GetColumnByName(name));
+  if (!array || array->GetNumberOfTuples() != table->GetNumberOfRows() ||
+    array->GetNumberOfComponents() < components)
+  {
+    error = std::string("the chart table has no int column '") + name + "' with " +
+      std::to_string(components) + " components";
+    return nullptr;
+  }
+  return array;
+}
+
+vtkDoubleArray* doubleColumnOf(
+  vtkTable* table, const char* name, int components, std::string& error)
+{
+  auto* array = vtkDoubleArray::SafeDownCast(table->GetColumnByName(name));
+  if (!array || array->GetNumberOfTuples() != table->GetNumberOfRows() ||
+    array->GetNumberOfComponents() < components)
+  {
+    error = std::string("the chart table has no double column '") + name + "' with " +
+      std::to_string(components) + " components";
+    return nullptr;
+  }
+  return array;
+}
+} // namespace
+
+void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
+{
+  output->Initialize();
+  const vtkIdType nc = static_cast<vtkIdType>(atlas.charts.size());
+  const int levels = std::max(atlas.maxLevel() + 1, 1);
+
+  // Block 0: the chart table.
+  vtkNew<vtkTable> table;
+  auto id = intColumn(tc::kChartId, 1, nc);
+  auto maxLevel = intColumn(tc::kMaxLevel, 1, nc);
+  auto corners = intColumn(tc::kChartCorners, 3, nc);
+  auto neighborChart = intColumn(tc::kNeighborChart, 3, nc);
+  auto neighborSide = intColumn(tc::kNeighborSide, 3, nc);
+  auto featureSide = intColumn(tc::kFeatureSide, 3, nc);
+  auto partner = intColumn(tc::kPartner, 1, nc);
+  auto rotated = intColumn(tc::kRotated, 1, nc);
+  auto origin = intColumn(tc::kOrigin, 2 * levels, nc);
+  auto box = doubleColumn(tc::kBox, 12, nc);
+  auto levelError = doubleColumn(tc::kLevelError, levels, nc);
+  for (vtkIdType c = 0; c < nc; ++c)
+  {
+    const tc::AtlasChart& chart = atlas.charts[static_cast<size_t>(c)];
+    id->SetValue(c, static_cast<int>(c));
+    maxLevel->SetValue(c, chart.maxLevel);
+    partner->SetValue(c, chart.partner);
+    rotated->SetValue(c, chart.rotated);
+    for (int k = 0; k < 3; ++k)
+    {
+      corners->SetTypedComponent(c, k, chart.cornerVertex[static_cast<size_t>(k)]);
+      neighborChart->SetTypedComponent(c, k, chart.neighborChart[static_cast<size_t>(k)]);
+      neighborSide->SetTypedComponent(c, k, chart.neighborSide[static_cast<size_t>(k)]);
+      featureSide->SetTypedComponent(c, k, chart.featureSide[static_cast<size_t>(k)]);
+    }
+    for (size_t k = 0; k < chart.origin.size() && k < static_cast<size_t>(levels); ++k)
+    {
+      origin->SetTypedComponent(c, static_cast<int>(2 * k), chart.origin[k][0]);
+      origin->SetTypedComponent(c, static_cast<int>(2 * k + 1), chart.origin[k][1]);
+    }
+    for (int i = 0; i < 12; ++i)
+    {
+      box->SetTypedComponent(c, i, chart.box[static_cast<size_t>(i)]);
+    }
+    for (size_t d = 0; d < chart.levelError.size() && d < static_cast<size_t>(levels); ++d)
+    {
+      levelError->SetTypedComponent(c, static_cast<int>(d), chart.levelError[d]);
+    }
+  }
+  for (vtkAbstractArray* column : std::vector<vtkAbstractArray*>{ id, maxLevel, corners,
+         neighborChart, neighborSide, featureSide, partner, rotated, origin, box, levelError })
+  {
+    table->AddColumn(column);
+  }
+  output->SetBlock(0, table);
+  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Charts");
+
+  // Block 1: one image per mip step.
+  vtkNew<vtkMultiBlockDataSet> images;
+  images->SetNumberOfBlocks(static_cast<unsigned int>(atlas.images.size()));
+  for (size_t k = 0; k < atlas.images.size(); ++k)
+  {
+    const tc::AtlasImage& source = atlas.images[k];
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(source.width, source.height, 1);
+    for (size_t a = 0; a < atlas.attributes.size() && a < source.data.size(); ++a)
+    {
+      vtkNew<vtkFloatArray> array;
+      array->SetName(atlas.attributes[a].name.c_str());
+      array->SetNumberOfComponents(atlas.attributes[a].components);
+      array->SetNumberOfTuples(static_cast<vtkIdType>(source.width) * source.height);
+      std::copy(source.data[a].begin(), source.data[a].end(), array->GetPointer(0));
+      image->GetPointData()->AddArray(array);
+    }
+    image->GetPointData()->SetActiveScalars(tc::kAtlasNormal);
+    images->SetBlock(static_cast<unsigned int>(k), image);
+    images->GetMetaData(static_cast<unsigned int>(k))
+      ->Set(vtkCompositeDataSet::NAME(), ("Image " + std::to_string(k)).c_str());
+  }
+  output->SetBlock(1, images);
+  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Images");
+
+  // Field data: provenance.
+  vtkNew<vtkStringArray> source;
+  source->SetName(tc::kAtlasSource);
+  source->InsertNextValue(atlas.source);
+  output->GetFieldData()->AddArray(source);
+  vtkNew<vtkTypeInt64Array> counts;
+  counts->SetName(tc::kInputPoints);
+  counts->InsertNextValue(atlas.inputPoints);
+  output->GetFieldData()->AddArray(counts);
+  vtkNew<vtkTypeInt64Array> triangles;
+  triangles->SetName(tc::kInputTriangles);
+  triangles->InsertNextValue(atlas.inputTriangles);
+  output->GetFieldData()->AddArray(triangles);
+  vtkNew<vtkDoubleArray> diagonal;
+  diagonal->SetName(tc::kInputDiagonal);
+  diagonal->InsertNextValue(atlas.inputDiagonal);
+  output->GetFieldData()->AddArray(diagonal);
+}
+
+bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
+{
+  atlas = tc::Atlas();
+  auto* top = vtkMultiBlockDataSet::SafeDownCast(input);
+  vtkTable* table =
+    top && top->GetNumberOfBlocks() == 2 ? vtkTable::SafeDownCast(top->GetBlock(0)) : nullptr;
+  auto* images = table ? vtkMultiBlockDataSet::SafeDownCast(top->GetBlock(1)) : nullptr;
+  if (!images)
+  {
+    error = "the input is not an atlas (a multiblock of a chart table and images, as made by "
+            "tcGeometryImages or tcAtlasReader)";
+    return false;
+  }
+
+  // Chart table.
+  const vtkIdType nc = table->GetNumberOfRows();
+  vtkIntArray* maxLevel = intColumnOf(table, tc::kMaxLevel, 1, error);
+  vtkIntArray* corners = maxLevel ? intColumnOf(table, tc::kChartCorners, 3, error) : nullptr;
+  vtkIntArray* neighborChart = corners ? intColumnOf(table, tc::kNeighborChart, 3, error) : nullptr;
+  vtkIntArray* neighborSide =
+    neighborChart ? intColumnOf(table, tc::kNeighborSide, 3, error) : nullptr;
+  vtkIntArray* featureSide =
+    neighborSide ? intColumnOf(table, tc::kFeatureSide, 3, error) : nullptr;
+  vtkIntArray* partner = featureSide ? intColumnOf(table, tc::kPartner, 1, error) : nullptr;
+  vtkIntArray* rotated = partner ? intColumnOf(table, tc::kRotated, 1, error) : nullptr;
+  vtkIntArray* origin = rotated ? intColumnOf(table, tc::kOrigin, 2, error) : nullptr;
+  vtkDoubleArray* box = origin ? doubleColumnOf(table, tc::kBox, 12, error) : nullptr;
+  vtkDoubleArray* levelError = box ? doubleColumnOf(table, tc::kLevelError, 1, error) : nullptr;
+  if (!levelError)
+  {
+    return false;
+  }
+  atlas.charts.resize(static_cast<size_t>(nc));
+  for (vtkIdType c = 0; c < nc; ++c)
+  {
+    tc::AtlasChart& chart = atlas.charts[static_cast<size_t>(c)];
+    chart.maxLevel = maxLevel->GetValue(c);
+    if (chart.maxLevel < 0 || 2 * (chart.maxLevel + 1) > origin->GetNumberOfComponents() ||
+      chart.maxLevel + 1 > levelError->GetNumberOfComponents())
+    {
+      error = "chart " + std::to_string(c) + " has a level the table's columns do not cover";
+      return false;
+    }
+    chart.partner = partner->GetValue(c);
+    chart.rotated = static_cast<uint8_t>(rotated->GetValue(c) != 0);
+    for (int k = 0; k < 3; ++k)
+    {
+      chart.cornerVertex[static_cast<size_t>(k)] = corners->GetTypedComponent(c, k);
+      chart.neighborChart[static_cast<size_t>(k)] = neighborChart->GetTypedComponent(c, k);
+      chart.neighborSide[static_cast<size_t>(k)] = neighborSide->GetTypedComponent(c, k);
+      chart.featureSide[static_cast<size_t>(k)] =
+        static_cast<uint8_t>(featureSide->GetTypedComponent(c, k) != 0);
+    }
+    for (int k = 0; k <= chart.maxLevel; ++k)
+    {
+      chart.origin.push_back(
+        { origin->GetTypedComponent(c, 2 * k), origin->GetTypedComponent(c, 2 * k + 1) });
+    }
+    for (int i = 0; i < 12; ++i)
+    {
+      chart.box[static_cast<size_t>(i)] = box->GetTypedComponent(c, i);
+    }
+    bool measured = true;
+    for (int d = 0; d <= chart.maxLevel; ++d)
+    {
+      measured &= !std::isnan(levelError->GetTypedComponent(c, d));
+    }
+    for (int d = 0; measured && d <= chart.maxLevel; ++d)
+    {
+      chart.levelError.push_back(levelError->GetTypedComponent(c, d));
+    }
+  }
+
+  // Images and their attributes: the first image names the attributes, in its array order.
+  for (unsigned int k = 0; k < images->GetNumberOfBlocks(); ++k)
+  {
+    auto* image = vtkImageData::SafeDownCast(images->GetBlock(k));
+    if (!image)
+    {
+      error = "block " + std::to_string(k) + " of the images is not a vtkImageData";
+      return false;
+    }
+    int dims[3];
+    image->GetDimensions(dims);
+    tc::AtlasImage out;
+    out.width = dims[0];
+    out.height = dims[1];
+    vtkPointData* pd = image->GetPointData();
+    if (k == 0)
+    {
+      for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+      {
+        if (vtkFloatArray::SafeDownCast(pd->GetAbstractArray(a)) && pd->GetArrayName(a))
+        {
+          atlas.attributes.push_back(
+            { pd->GetArrayName(a), pd->GetAbstractArray(a)->GetNumberOfComponents() });
+        }
+      }
+    }
+    for (const tc::AtlasAttribute& attribute : atlas.attributes)
+    {
+      auto* array = vtkFloatArray::SafeDownCast(pd->GetAbstractArray(attribute.name.c_str()));
+      if (!array || array->GetNumberOfComponents() != attribute.components ||
+        array->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] || dims[2] != 1)
+      {
+        error = "image " + std::to_string(k) + " lacks a float array '" + attribute.name +
+          "' of its size";
+        return false;
+      }
+      const float* values = array->GetPointer(0);
+      out.data.emplace_back(values, values + array->GetNumberOfValues());
+    }
+    atlas.images.push_back(std::move(out));
+  }
+
+  // Provenance (optional).
+  vtkFieldData* fd = top->GetFieldData();
+  if (auto* source = vtkStringArray::SafeDownCast(fd->GetAbstractArray(tc::kAtlasSource)))
+  {
+    atlas.source = source->GetNumberOfValues() > 0 ? source->GetValue(0) : std::string();
+  }
+  if (vtkDataArray* a = fd->GetArray(tc::kInputPoints))
+  {
+    atlas.inputPoints = static_cast<int64_t>(a->GetTuple1(0));
+  }
+  if (vtkDataArray* a = fd->GetArray(tc::kInputTriangles))
+  {
+    atlas.inputTriangles = static_cast<int64_t>(a->GetTuple1(0));
+  }
+  if (vtkDataArray* a = fd->GetArray(tc::kInputDiagonal))
+  {
+    atlas.inputDiagonal = a->GetTuple1(0);
+  }
+
+  try
+  {
+    tc::validateAtlas(atlas);
+  }
+  catch (const tc::InputError& e)
+  {
+    error = e.what();
+    return false;
+  }
+  return true;
+}
+} // namespace tcvtk

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcGeometryImageMesh.h"
+
+#include "tcAtlasConversion.h"
+#include "tcMeshConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/geometry_image_mesh.h"
+
+#include <vtkCellData.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+vtkStandardNewMacro(tcGeometryImageMesh);
+
+tcGeometryImageMesh::tcGeometryImageMesh() = default;
+tcGeometryImageMesh::~tcGeometryImageMesh() = default;
+
+void tcGeometryImageMesh::SetChartLevels(vtkIntArray* levels)
+{
+  if (levels != this->ChartLevels)
+  {
+    this->ChartLevels = levels;
+    this->Modified();
+  }
+}
+
+vtkIntArray* tcGeometryImageMesh::GetChartLevels()
+{
+  return this->ChartLevels;
+}
+
+int tcGeometryImageMesh::FillInputPortInformation(int, vtkInformation* info)
+{
+  // Any data object: ToAtlas explains what an atlas is when it gets something else.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+int tcGeometryImageMesh::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // 1. Input and output.
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+
+  // 2 and 3. The atlas and the levels.
+  tc::Atlas atlas;
+  std::string error;
+  if (!input || !tcvtk::ToAtlas(input, atlas, error))
+  {
+    vtkErrorMacro("Cannot rebuild a mesh: " << (input ? error : "no input") << ".");
+    return 0;
+  }
+  std::vector<int32_t> levels;
+  if (this->ChartLevels)
+  {
+    if (this->ChartLevels->GetNumberOfTuples() != static_cast<vtkIdType>(atlas.charts.size()))
+    {
+      vtkErrorMacro("Cannot rebuild a mesh: ChartLevels has "
+        << this->ChartLevels->GetNumberOfTuples() << " values but the atlas has "
+        << atlas.charts.size() << " charts.");
+      return 0;
+    }
+    levels.assign(
+      this->ChartLevels->GetPointer(0), this->ChartLevels->GetPointer(0) + atlas.charts.size());
+  }
+  else
+  {
+    for (const tc::AtlasChart& chart : atlas.charts)
+    {
+      levels.push_back(this->Level < 0 ? chart.maxLevel : this->Level);
+    }
+  }
+
+  // 4. Rebuild with stitching.
+  tc::RebuiltMesh rebuilt;
+  try
+  {
+    rebuilt = tc::rebuildMesh(atlas, levels, tcvtk::MakeProgress(this));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot rebuild a mesh: " << e.what());
+    return 0;
+  }
+
+  // 5. The mesh and its arrays.
+  tcvtk::FromTriMesh(rebuilt.mesh, output);
+  const vtkIdType np = rebuilt.mesh.numPoints();
+  for (size_t a = 1; a < atlas.attributes.size(); ++a)
+  {
+    vtkNew<vtkFloatArray> array;
+    const bool normal = atlas.attributes[a].name == tc::kAtlasNormal;
+    array->SetName(normal ? tc::kVertexNormal : atlas.attributes[a].name.c_str());
+    array->SetNumberOfComponents(atlas.attributes[a].components);
+    array->SetNumberOfTuples(np);
+    std::copy(
+      rebuilt.attributes[a - 1].begin(), rebuilt.attributes[a - 1].end(), array->GetPointer(0));
+    output->GetPointData()->AddArray(array);
+    if (normal)
+    {
+      output->GetPointData()->SetNormals(array);
+    }
+  }
+  vtkNew<vtkIntArray> source;
+  source->SetName(tc::kSampleChart);
+  source->SetNumberOfComponents(3);
+  source->SetNumberOfTuples(np);
+  std::copy(rebuilt.pointSource.begin(), rebuilt.pointSource.end(), source->GetPointer(0));
+  output->GetPointData()->AddArray(source);
+  output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kChartId, rebuilt.chartId));
+  output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kLevel, rebuilt.level));
+  output->GetCellData()->SetActiveScalars(tc::kChartId);
+  return 1;
+}
+
+void tcGeometryImageMesh::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Level: " << this->Level << "\n";
+  os << indent << "ChartLevels: " << (this->ChartLevels ? "set" : "(none)") << "\n";
+}

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcGeometryImages.h"
+
+#include "tcAtlasConversion.h"
+#include "tcMeshConversion.h"
+
+#include "tc/array_names.h"
+#include "tc/geometry_images.h"
+
+#include <vtkDataArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+
+vtkStandardNewMacro(tcGeometryImages);
+
+tcGeometryImages::tcGeometryImages()
+{
+  const tc::GeometryImageOptions defaults;
+  this->SampleBudget = defaults.sampleBudget;
+  this->MinLevel = defaults.minLevel;
+  this->MaxLevel = defaults.maxLevel;
+  this->CurvatureWeight = defaults.curvatureWeight;
+}
+
+tcGeometryImages::~tcGeometryImages() = default;
+
+void tcGeometryImages::AddResampledArray(const char* name)
+{
+  if (name && *name &&
+    std::find(this->ResampledArrays.begin(), this->ResampledArrays.end(), name) ==
+      this->ResampledArrays.end())
+  {
+    this->ResampledArrays.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void tcGeometryImages::ClearResampledArrays()
+{
+  if (!this->ResampledArrays.empty())
+  {
+    this->ResampledArrays.clear();
+    this->Modified();
+  }
+}
+
+int tcGeometryImages::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int tcGeometryImages::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // 1. Input and output.
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+
+  // 2 and 3. The patches, paths and base complex; curvature and the arrays to resample.
+  tc::PatchMesh patches;
+  tc::BaseComplexResult base;
+  std::string error;
+  if (!input || !tcvtk::ReadPatchMesh(input, patches, base, error))
+  {
+    vtkErrorMacro("Cannot build geometry images: " << (input ? error : "no input") << ".");
+    return 0;
+  }
+  if (this->MinLevel > this->MaxLevel)
+  {
+    vtkErrorMacro("Cannot build geometry images: MinLevel ("
+      << this->MinLevel << ") is above MaxLevel (" << this->MaxLevel << ").");
+    return 0;
+  }
+  const vtkIdType np = input->GetNumberOfPoints();
+  std::vector<double> curvature;
+  if (input->GetPointData()->GetArray(tc::kMeanCurvature) &&
+    !tcvtk::ReadArray(input->GetPointData(), tc::kMeanCurvature, np, 1, curvature, error))
+  {
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
+    return 0;
+  }
+  std::vector<tc::GeometryImageAttribute> extra;
+  for (const std::string& name : this->ResampledArrays)
+  {
+    vtkDataArray* array = input->GetPointData()->GetArray(name.c_str());
+    if (!array)
+    {
+      vtkErrorMacro("Cannot build geometry images: the input has no numeric point array '"
+        << name << "' to resample.");
+      return 0;
+    }
+    tc::GeometryImageAttribute attribute;
+    attribute.name = name;
+    attribute.components = array->GetNumberOfComponents();
+    if (!tcvtk::ReadArray(
+          input->GetPointData(), name.c_str(), np, attribute.components, attribute.values, error))
+    {
+      vtkErrorMacro("Cannot build geometry images: " << error << ".");
+      return 0;
+    }
+    extra.push_back(std::move(attribute));
+  }
+
+  // 4. Parameterize, resample, pack.
+  tc::GeometryImageOptions options;
+  options.sampleBudget = this->SampleBudget;
+  options.minLevel = this->MinLevel;
+  options.maxLevel = this->MaxLevel;
+  options.curvatureWeight = this->CurvatureWeight;
+  tc::Atlas atlas;
+  try
+  {
+    atlas = tc::buildGeometryImages(
+      patches, base, {}, curvature, extra, options, tcvtk::MakeProgress(this));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot build geometry images: " << e.what());
+    return 0;
+  }
+
+  // 5. The atlas as a multiblock.
+  const std::string report = tcvtk::GetTextField(input->GetFieldData(), tc::kReaderReport);
+  atlas.source = report.substr(0, report.find('\n'));
+  tcvtk::FromAtlas(atlas, output);
+  return 1;
+}
+
+void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleBudget: " << this->SampleBudget << "\n";
+  os << indent << "MinLevel: " << this->MinLevel << "\n";
+  os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+  os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
+  os << indent << "ResampledArrays:";
+  for (const std::string& name : this->ResampledArrays)
+  {
+    os << " " << name;
+  }
+  os << "\n";
+}

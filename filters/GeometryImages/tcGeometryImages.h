@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class tcGeometryImages
+ * @brief Resamples every triangle patch into a triangular geometry image with mip levels and
+ * packs them in pairs into one atlas (Feng et al. 2010, section 5.2).
+ *
+ * Each patch is parameterized onto a right triangle (Floater's mean-value coordinates, its
+ * three paths fixed on the sides by arc length) and resampled on grids of 2^d + 1 samples per
+ * side for d = 0 .. d_max, d_max following the patch's curvature-weighted area under a total
+ * sample budget. Shared sides are sampled once along their path, so neighbouring charts hold
+ * bit-identical samples there and stitch without cracks. Two charts of close resolution share
+ * each (2^dh + 2) x (2^dh + 1) rectangle. Every chart also gets an oriented bounding box and an
+ * error estimate per level.
+ *
+ * Input: tcPathTracing's first output. Output: the atlas as a multiblock (block 0 the chart
+ * table, block 1 one vtkImageData per mip step with float arrays Position, Normal and the
+ * point arrays chosen with AddResampledArray); tcAtlasWriter saves it.
+ */
+#ifndef tcGeometryImages_h
+#define tcGeometryImages_h
+
+#include "TriChartGeometryImagesModule.h"
+
+#include <vtkMultiBlockDataSetAlgorithm.h>
+
+#include <string>
+#include <vector>
+
+class TRICHARTGEOMETRYIMAGES_EXPORT tcGeometryImages : public vtkMultiBlockDataSetAlgorithm
+{
+public:
+  static tcGeometryImages* New();
+  vtkTypeMacro(tcGeometryImages, vtkMultiBlockDataSetAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Total samples over all charts at their finest level; 0 uses the input's point count.
+  vtkSetClampMacro(SampleBudget, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(SampleBudget, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Smallest and largest d_max of a chart (2^d + 1 samples per side).
+  vtkSetClampMacro(MinLevel, int, 0, 12);
+  vtkGetMacro(MinLevel, int);
+  vtkSetClampMacro(MaxLevel, int, 0, 12);
+  vtkGetMacro(MaxLevel, int);
+  ///@}
+
+  ///@{
+  /// Weight of |mean curvature| x diagonal in the curvature-weighted area that sets d_max
+  /// (0: area only). Uses the point array MeanCurvature when the input has it.
+  vtkSetClampMacro(CurvatureWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(CurvatureWeight, double);
+  ///@}
+
+  ///@{
+  /// Point arrays of the input to resample into the atlas besides Position and Normal.
+  void AddResampledArray(const char* name);
+  void ClearResampledArrays();
+  ///@}
+
+protected:
+  tcGeometryImages();
+  ~tcGeometryImages() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  tcGeometryImages(const tcGeometryImages&) = delete;
+  void operator=(const tcGeometryImages&) = delete;
+
+  vtkIdType SampleBudget = 0;
+  int MinLevel = 2;
+  int MaxLevel = 8;
+  double CurvatureWeight = 1.0;
+  std::vector<std::string> ResampledArrays;
+};
+
+#endif

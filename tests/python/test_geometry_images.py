@@ -1,0 +1,93 @@
+"""Patches, geometry images, the atlas file and the rebuilt mesh from Python."""
+import pytest
+
+import trichart
+from trichart.pipeline import TriChartError
+
+
+@pytest.fixture(scope="module")
+def bunny():
+    import os
+    import pathlib
+
+    data = pathlib.Path(os.environ.get("TRICHART_TESTING_DATA",
+                                       pathlib.Path(__file__).parents[2] / "testing-data"))
+    clean, _ = trichart.prepare(trichart.read_mesh(data / "meshes" / "bunny_npm.off"))
+    surface, _ = trichart.curvature(clean)
+    clusters, _ = trichart.cluster(surface)
+    features, _, _ = trichart.refine_features(clusters)
+    base, parameterized = trichart.base_complex(features)
+    patches, paths = trichart.trace_paths(parameterized)
+    atlas = trichart.geometry_images(patches, resampled_arrays=["MeanCurvature"])
+    return {"clean": clean, "base": base, "patches": patches, "paths": paths, "atlas": atlas}
+
+
+def closed(mesh):
+    from vtkmodules.vtkFiltersCore import vtkFeatureEdges
+
+    edges = vtkFeatureEdges()
+    edges.SetInputData(mesh)
+    edges.BoundaryEdgesOn()
+    edges.NonManifoldEdgesOn()
+    edges.FeatureEdgesOff()
+    edges.ManifoldEdgesOff()
+    edges.Update()
+    return edges.GetOutput().GetNumberOfLines() == 0
+
+
+def points(mesh):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    return vtk_to_numpy(mesh.GetPoints().GetData())
+
+
+def test_one_patch_per_base_face(bunny):
+    ids = bunny["patches"].GetCellData().GetArray("PatchId")
+    assert ids.GetRange() == (0.0, bunny["base"].GetNumberOfPolys() - 1.0)
+    assert bunny["paths"].GetNumberOfLines() == 3 * bunny["base"].GetNumberOfPolys() // 2
+
+
+def test_atlas_file_round_trip_rebuilds_the_same_mesh(bunny, tmp_path):
+    import numpy
+
+    path = trichart.write_atlas(bunny["atlas"], tmp_path / "bunny.exr")
+    again = trichart.read_atlas(path)
+    for level in (0, 2, -1):
+        a = trichart.rebuild(bunny["atlas"], level=level)
+        b = trichart.rebuild(again, level=level)
+        assert closed(a)
+        assert numpy.array_equal(points(a), points(b))
+    assert again.GetBlock(1).GetBlock(0).GetPointData().GetArray("MeanCurvature") is not None
+
+
+def test_levels_per_chart_rebuild_a_closed_mesh(bunny):
+    charts = trichart.atlas_charts(bunny["atlas"])
+    top = charts.GetColumnByName("MaxLevel")
+    levels = [0 if c % 2 else top.GetValue(c) for c in range(charts.GetNumberOfRows())]
+    mesh = trichart.rebuild(bunny["atlas"], chart_levels=levels)
+    assert closed(mesh)
+    level = mesh.GetCellData().GetArray("Level")
+    assert level.GetRange()[0] == 0 and level.GetRange()[1] == max(levels)
+    with pytest.raises(TriChartError, match="ChartLevels"):
+        trichart.rebuild(bunny["atlas"], chart_levels=levels[:-1])
+
+
+def test_error_falls_as_the_level_rises(bunny):
+    errors = []
+    for level in (1, 2, 3):
+        mesh, figures = trichart.surface_distance(trichart.rebuild(bunny["atlas"], level=level),
+                                                  bunny["clean"])
+        assert mesh.GetPointData().GetArray("Distance") is not None
+        assert figures["hausdorff"] >= figures["rms"] >= figures["mean"] > 0
+        errors.append(figures["rms"] / figures["diagonal"])
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[2] < 0.005
+
+
+def test_missing_or_foreign_atlas_files_are_refused(tmp_path, testing_data):
+    with pytest.raises(TriChartError, match="nothing.exr"):
+        trichart.read_atlas(tmp_path / "nothing.exr")
+    with pytest.raises(TriChartError, match="cube.off"):
+        trichart.read_atlas(testing_data / "meshes" / "cube.off")
+    with pytest.raises(TriChartError, match="not an atlas"):
+        trichart.rebuild(trichart.read_mesh(testing_data / "meshes" / "cube.off"))
