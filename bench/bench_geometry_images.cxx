@@ -194,15 +194,45 @@ double printSeconds(const Stages& stages)
   return total;
 }
 
+/// Prints what a base complex came to (before path tracing, which needs it to be a bijection).
+void printBase(const tc::BaseComplexResult& base)
+{
+  std::cout << "base complex: " << base.baseTriangles.size() / 3 << " faces, "
+            << (base.reachedTarget ? "target reached" : "target not reached") << ", "
+            << base.invalidTriangles << " invalid triangles, " << base.snappedPoints
+            << " snapped points\n";
+}
+
+/// Prints the charts and levels of an atlas.
+void printAtlas(const tc::Atlas& atlas)
+{
+  int32_t minChartLevel = atlas.maxLevel();
+  for (const tc::AtlasChart& c : atlas.charts)
+  {
+    minChartLevel = std::min(minChartLevel, c.maxLevel);
+  }
+  std::cout << "charts: " << atlas.charts.size() << ", max level: " << atlas.maxLevel()
+            << " (chart levels " << minChartLevel << " .. " << atlas.maxLevel() << "), "
+            << atlas.images.size() << " images, finest " << atlas.images[0].width << " x "
+            << atlas.images[0].height << "\n";
+}
+
+/// The pipeline on one mesh; a stage that throws is reported and ends that part of the run.
 void benchmark(const std::string& file)
 {
   const std::string name = tcbench::BaseName(file);
   std::cout << "\n== " << name << "\n";
   Stages stages;
+
+  // Read and prepare (VTK filters), then the core mesh. Section 4: curvature and crest lines,
+  // spectral clustering, feature refinement, chained as the VTK filters (tcCurvature,
+  // tcSpectralClustering, tcFeatureRefinement) chain them.
+  tc::TriMesh mesh;
+  tc::CurvatureResult curvature;
+  tc::FeatureRefinementResult features;
+  std::vector<int32_t> featureEdges;
   try
   {
-    // Read and prepare (VTK filters), then the core mesh.
-    tc::TriMesh mesh;
     stages.run("read + preparation",
       [&]
       {
@@ -214,10 +244,6 @@ void benchmark(const std::string& file)
       });
     std::cout << "input: " << mesh.numPoints() << " points, " << mesh.numTriangles()
               << " triangles (prepared)\n";
-
-    // Section 4: curvature and crest lines, spectral clustering, feature refinement, chained as
-    // the VTK filters (tcCurvature, tcSpectralClustering, tcFeatureRefinement) chain them.
-    tc::CurvatureResult curvature;
     std::vector<uint8_t> crest;
     stages.run("curvature + crest lines",
       [&]
@@ -228,7 +254,6 @@ void benchmark(const std::string& file)
     tc::SpectralClusteringResult clusters;
     stages.run("spectral clustering",
       [&] { clusters = tc::spectralClustering(mesh, curvature.faceMean, crest); });
-    tc::FeatureRefinementResult features;
     stages.run("feature refinement",
       [&]
       {
@@ -237,7 +262,6 @@ void benchmark(const std::string& file)
       });
     // The feature edges: consecutive vertices of every feature line (as tcFeatureRefinement
     // hands them to tcBaseComplex).
-    std::vector<int32_t> featureEdges;
     for (int64_t k = 0; k < features.numLines(); ++k)
     {
       for (int64_t i = features.lineOffsets[k]; i + 1 < features.lineOffsets[k + 1]; ++i)
@@ -249,8 +273,22 @@ void benchmark(const std::string& file)
     std::cout << "features: " << clusters.numClusters << " clusters, " << features.numLines()
               << " feature lines (" << featureEdges.size() / 2 << " edges), "
               << features.corners.size() << " corners\n";
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << name << ": " << stages.current << " failed: " << e.what() << "\n";
+    std::cout << "seconds of the stages before\n";
+    printSeconds(stages);
+    std::cout << "peak memory so far: " << fixed(tcbench::PeakMegabytes(), 1) << " MB\n";
+    return;
+  }
 
-    // Section 5: base complex, traced paths, geometry images; the atlas file.
+  // Section 5: base complex, traced paths, geometry images; the atlas file. Section 7: the
+  // rebuilt mesh at every uniform level, and QEM at the same triangle count.
+  std::vector<LevelError> ours;
+  double bytes = -1.0;
+  try
+  {
     tc::BaseComplexResult base;
     stages.run("base complex",
       [&]
@@ -258,29 +296,17 @@ void benchmark(const std::string& file)
         base =
           tc::buildBaseComplex(mesh, features.featureVertex, features.cornerVertex, featureEdges);
       });
+    printBase(base);
     const tc::Atlas atlas = atlasOf(mesh, base, curvature.mean, name, stages);
+    printAtlas(atlas);
     const std::filesystem::path atlasFile = std::filesystem::temp_directory_path() /
       ("tc_bench_geometry_images_" + std::to_string(getpid()) + ".exr");
     stages.run("write atlas", [&] { tc::writeAtlas(atlas, atlasFile.string()); });
-    const double bytes = static_cast<double>(std::filesystem::file_size(atlasFile));
+    bytes = static_cast<double>(std::filesystem::file_size(atlasFile));
     std::filesystem::remove(atlasFile);
 
-    int32_t minChartLevel = atlas.maxLevel();
-    for (const tc::AtlasChart& c : atlas.charts)
-    {
-      minChartLevel = std::min(minChartLevel, c.maxLevel);
-    }
-    std::cout << "base complex: " << base.baseTriangles.size() / 3 << " faces ("
-              << (base.reachedTarget ? "target reached" : "target not reached") << ", "
-              << base.invalidTriangles << " invalid triangles)\n";
-    std::cout << "charts: " << atlas.charts.size() << ", max level: " << atlas.maxLevel()
-              << " (chart levels " << minChartLevel << " .. " << atlas.maxLevel() << "), "
-              << atlas.images.size() << " images, finest " << atlas.images[0].width << " x "
-              << atlas.images[0].height << "\n";
-
-    // Section 7: the rebuilt mesh at every uniform level, and QEM at the same triangle count.
     stages.current = "error measurement";
-    const std::vector<LevelError> ours = levelErrors(atlas, mesh);
+    ours = levelErrors(atlas, mesh);
     std::cout << "\nerror against the prepared input (Hausdorff and RMS / bounding-box diagonal); "
                  "QEM = meshopt_simplify to the same triangle count\n";
     std::cout << std::left << std::setw(6) << "level" << std::setw(9) << "verts" << std::setw(9)
@@ -310,45 +336,54 @@ void benchmark(const std::string& file)
               << percent(finest.hausdorff) << " " << mark(finest.hausdorff <= kMaxFinestError)
               << ", RMS " << percent(finest.rms) << " " << mark(finest.rms <= kMaxFinestError)
               << "\n";
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << name << ": " << stages.current << " failed: " << e.what() << "\n";
+  }
 
-    // The ablation of Fig. 10: the same chain with no feature constraint on the base complex.
-    Stages ablation;
-    try
+  // The ablation of Fig. 10: the same chain with no feature constraint on the base complex
+  // (run whether or not the constrained one got through; not part of the timed pipeline).
+  Stages ablation;
+  try
+  {
+    std::cout << "\nwithout feature constraints (Fig. 10 ablation)\n";
+    tc::BaseComplexResult plainBase;
+    ablation.run("base complex", [&] { plainBase = tc::buildBaseComplex(mesh, {}, {}, {}); });
+    printBase(plainBase);
+    const tc::Atlas plain = atlasOf(mesh, plainBase, curvature.mean, name, ablation);
+    printAtlas(plain);
+    ablation.current = "error measurement";
+    const std::vector<LevelError> plainErrors = levelErrors(plain, mesh);
+    std::cout << std::left << std::setw(6) << "level" << std::setw(9) << "verts" << std::setw(9)
+              << "tris" << std::setw(11) << "H" << std::setw(11) << "RMS"
+              << "with features / without (H, RMS)\n";
+    for (size_t d = 0; d < plainErrors.size(); ++d)
     {
-      tc::BaseComplexResult plainBase;
-      ablation.run("base complex without features",
-        [&] { plainBase = tc::buildBaseComplex(mesh, {}, {}, {}); });
-      const tc::Atlas plain = atlasOf(mesh, plainBase, curvature.mean, name, ablation);
-      ablation.current = "error measurement";
-      const std::vector<LevelError> plainErrors = levelErrors(plain, mesh);
-      std::cout << "\nwithout feature constraints (Fig. 10 ablation): " << plain.charts.size()
-                << " charts, max level " << plain.maxLevel() << "\n";
-      std::cout << std::left << std::setw(6) << "level" << std::setw(9) << "verts" << std::setw(9)
-                << "tris" << std::setw(11) << "H" << std::setw(11) << "RMS"
-                << "with features / without (H, RMS)\n";
-      for (size_t d = 0; d < plainErrors.size(); ++d)
+      std::cout << std::setw(6) << d << std::setw(9) << plainErrors[d].vertices << std::setw(9)
+                << plainErrors[d].triangles << std::setw(11) << percent(plainErrors[d].hausdorff)
+                << std::setw(11) << percent(plainErrors[d].rms);
+      if (d < ours.size())
       {
-        std::cout << std::setw(6) << d << std::setw(9) << plainErrors[d].vertices << std::setw(9)
-                  << plainErrors[d].triangles << std::setw(11) << percent(plainErrors[d].hausdorff)
-                  << std::setw(11) << percent(plainErrors[d].rms);
-        if (d < ours.size())
-        {
-          std::cout << fixed(ours[d].hausdorff / plainErrors[d].hausdorff, 2) << ", "
-                    << fixed(ours[d].rms / plainErrors[d].rms, 2);
-        }
-        std::cout << "\n";
+        std::cout << fixed(ours[d].hausdorff / plainErrors[d].hausdorff, 2) << ", "
+                  << fixed(ours[d].rms / plainErrors[d].rms, 2);
       }
-      std::cout << std::right;
+      std::cout << "\n";
     }
-    catch (const std::exception& e)
-    {
-      std::cout << name << ": ablation (no features): " << ablation.current
-                << " failed: " << e.what() << "\n";
-    }
+    std::cout << std::right;
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << name << ": ablation (no features): " << ablation.current << " failed: " << e.what()
+              << "\n";
+  }
 
-    // Stage times and size (the ablation above is not part of the pipeline).
-    std::cout << "\nseconds per stage\n";
-    const double total = printSeconds(stages);
+  // Stage times and size of the feature-constrained pipeline.
+  const bool complete = bytes >= 0.0;
+  std::cout << "\nseconds per stage" << (complete ? "" : " (of the stages that ran)") << "\n";
+  const double total = printSeconds(stages);
+  if (complete)
+  {
     std::cout << "  " << std::left << std::setw(26) << "total" << std::right << fixed(total, 3);
     if (name == kGoalMesh)
     {
@@ -360,12 +395,6 @@ void benchmark(const std::string& file)
               << static_cast<int64_t>(bytes) << " bytes), " << fixed(perTriangle, 2)
               << " bytes per input triangle   goal <= 14: "
               << mark(perTriangle <= kMaxBytesPerTriangle) << "\n";
-  }
-  catch (const std::exception& e)
-  {
-    std::cout << name << ": " << stages.current << " failed: " << e.what() << "\n";
-    std::cout << "seconds of the stages before\n";
-    printSeconds(stages);
   }
   std::cout << "peak memory so far: " << fixed(tcbench::PeakMegabytes(), 1) << " MB\n";
 }
