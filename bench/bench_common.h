@@ -31,17 +31,9 @@ inline double Seconds(vtkAlgorithm* algorithm)
   return vtkTimerLog::GetUniversalTime() - start;
 }
 
-/// The meshes named on the command line, or else the 70K bunny and `large` (a path under
-/// ../shared/data; the 871K dragon scan by default). Absent files are reported and left out.
-inline std::vector<std::string> Meshes(
-  int argc, char* argv[], const char* large = "static_large/dragon_vrip.ply.gz")
+/// The files of `files` that exist; absent ones are reported and left out.
+inline std::vector<std::string> Present(const std::vector<std::string>& files)
 {
-  std::vector<std::string> files(argv + 1, argv + argc);
-  if (files.empty())
-  {
-    files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
-      std::string(TC_SHARED_DATA_DIR) + "/" + large };
-  }
   std::vector<std::string> present;
   for (const std::string& file : files)
   {
@@ -55,6 +47,20 @@ inline std::vector<std::string> Meshes(
     }
   }
   return present;
+}
+
+/// The meshes named on the command line, or else the 70K bunny and `large` (a path under
+/// ../shared/data; the 871K dragon scan by default). Absent files are reported and left out.
+inline std::vector<std::string> Meshes(
+  int argc, char* argv[], const char* large = "static_large/dragon_vrip.ply.gz")
+{
+  std::vector<std::string> files(argv + 1, argv + argc);
+  if (files.empty())
+  {
+    files = { std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj",
+      std::string(TC_SHARED_DATA_DIR) + "/" + large };
+  }
+  return Present(files);
 }
 
 /// The mesh in `file`, read and prepared with the default options.
