@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// trichart-viewer: open a mesh, browse the TriChart stages, tune them, take screenshots.
+// trichart-viewer: open a mesh or an atlas, browse the TriChart stages, tune them, take
+// screenshots.
 #include "tcViewerWindow.h"
 
 #include <QApplication>
@@ -8,9 +9,11 @@
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include <vtkLogger.h>
 #include <vtkOutputWindow.h>
 
 #include <iostream>
+#include <vector>
 
 int main(int argc, char* argv[])
 {
@@ -19,65 +22,141 @@ int main(int argc, char* argv[])
   QApplication app(argc, argv);
   QApplication::setApplicationName("trichart-viewer");
 
+  const QString stageList = tcViewerWindow::StageNames().join(", ");
   QCommandLineParser parser;
   parser.setApplicationDescription("TriChart viewer: inspect every stage of the pipeline.");
   parser.addHelpOption();
-  parser.addPositionalArgument(
-    "mesh", "Mesh file to open (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk).");
-  QCommandLineOption screenshot(
-    "screenshot", "Run up to the stage, save a PNG of the window and exit.", "file");
+  parser.addPositionalArgument("files",
+    "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk) or atlas (.exr) files, opened in turn; "
+    "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas).",
+    "[files...]");
+  QCommandLineOption screenshot("screenshot",
+    "Run up to the stage, save a PNG of the window and exit. With several stages the file name "
+    "holds {stage}, replaced by each stage's name.",
+    "file");
   QCommandLineOption stage("stage",
-    "Stage to show: input, preparation, curvature (default), clusters, features or base.", "name",
-    "curvature");
+    "Stage to show: " + stageList +
+      " (default curvature); with --screenshot, several separated by commas, each framed as if "
+      "shown alone (one pipeline run for all).",
+    "name", "curvature");
   QCommandLineOption array("array", "Colour the surface by this array.", "name");
+  QCommandLineOption level(
+    "level", "Level of the reconstruction (-1: each chart's finest, the default).", "n", "-1");
+  QCommandLineOption saveAtlas("save-atlas",
+    "Write the atlas of the last file (built, or the one opened) as .exr, as File > Save atlas "
+    "does.",
+    "file");
   parser.addOption(screenshot);
   parser.addOption(stage);
   parser.addOption(array);
+  parser.addOption(level);
+  parser.addOption(saveAtlas);
   parser.process(app);
 
-  const int stageIndex = tcViewerWindow::StageFromName(parser.value(stage));
-  if (stageIndex < 0)
+  std::vector<int> stages;
+  for (const QString& name : parser.value(stage).split(','))
   {
-    std::cerr << "trichart-viewer: unknown stage '" << parser.value(stage).toStdString()
-              << "'; use input, preparation, curvature, clusters, features or base\n";
+    if (name.trimmed().isEmpty())
+    {
+      continue;
+    }
+    const int index = tcViewerWindow::StageFromName(name.trimmed());
+    if (index < 0)
+    {
+      std::cerr << "trichart-viewer: unknown stage '" << name.trimmed().toStdString() << "'; use "
+                << stageList.toStdString() << "\n";
+      return 2;
+    }
+    stages.push_back(index);
+  }
+  if (stages.empty())
+  {
+    std::cerr << "trichart-viewer: --stage needs a stage name; use " << stageList.toStdString()
+              << "\n";
+    return 2;
+  }
+  const QString shotPattern = parser.value(screenshot);
+  if (stages.size() > 1 && !shotPattern.contains("{stage}"))
+  {
+    std::cerr << "trichart-viewer: several stages need --screenshot FILE with {stage} in FILE\n";
+    return 2;
+  }
+
+  bool levelOk = false;
+  const int levelValue = parser.value(level).toInt(&levelOk);
+  if (!levelOk || levelValue < -1)
+  {
+    std::cerr << "trichart-viewer: --level needs an integer >= -1, not '"
+              << parser.value(level).toStdString() << "'\n";
     return 2;
   }
 
   tcViewerWindow window;
-  const bool batch = parser.isSet(screenshot);
+  window.SetReconstructionLevel(levelValue);
+  const bool batch = parser.isSet(screenshot) || parser.isSet(saveAtlas);
   window.SetBatchMode(batch);
   if (batch)
   {
     // Errors are reported once, by the window, on stderr.
     vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  else
+  {
+    // Filters log what they do at INFO level; the window shows what matters.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_WARNING);
   }
   window.show();
   QApplication::processEvents();
 
   const QStringList files = parser.positionalArguments();
-  bool ok = true;
-  if (!files.isEmpty())
+  if (batch && files.isEmpty())
   {
-    ok = window.OpenFile(files.first(), stageIndex);
-    if (ok && parser.isSet(array))
-    {
-      window.SetColorArray(parser.value(array));
-    }
+    std::cerr << "trichart-viewer: --screenshot and --save-atlas need a mesh or atlas file\n";
+    return 2;
+  }
+  // Each file is opened as if dropped on the window in turn: a file that fails leaves the
+  // window usable for the next one.
+  bool ok = true;
+  bool opened = false;
+  for (const QString& file : files)
+  {
+    opened = window.OpenFile(file, stages.front());
+    ok = ok && opened;
+  }
+  if (opened && parser.isSet(array))
+  {
+    window.SetColorArray(parser.value(array));
   }
   if (batch)
   {
-    if (files.isEmpty())
+    for (size_t k = 0; parser.isSet(screenshot) && k < stages.size(); ++k)
     {
-      std::cerr << "trichart-viewer: --screenshot needs a mesh file\n";
-      return 2;
+      // The first stage is shown by OpenFile; the others run on from it, each framed anew.
+      if (k > 0 && opened)
+      {
+        ok = window.ShowStage(stages[k]) && ok;
+        window.ResetCamera();
+        if (parser.isSet(array))
+        {
+          window.SetColorArray(parser.value(array));
+        }
+      }
+      const QString path =
+        QString(shotPattern).replace("{stage}", tcViewerWindow::StageNames()[stages[k]]);
+      const bool saved = window.SaveScreenshot(path);
+      if (!saved)
+      {
+        std::cerr << "trichart-viewer: cannot write " << path.toStdString() << "\n";
+      }
+      ok = ok && saved;
     }
-    const bool saved = window.SaveScreenshot(parser.value(screenshot));
-    if (!saved)
+    // Saved last, so that the pictures do not show the status message of the save.
+    if (opened && parser.isSet(saveAtlas))
     {
-      std::cerr << "trichart-viewer: cannot write " << parser.value(screenshot).toStdString()
-                << "\n";
+      ok = window.SaveAtlas(parser.value(saveAtlas)) && ok;
     }
-    return ok && saved ? 0 : 1;
+    return ok ? 0 : 1;
   }
   return app.exec();
 }

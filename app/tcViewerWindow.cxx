@@ -1,15 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcViewerWindow.h"
 
+#include "tcAtlasReader.h"
+#include "tcAtlasWriter.h"
 #include "tcBaseComplex.h"
 #include "tcColorMaps.h"
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
+#include "tcGeometryImageMesh.h"
+#include "tcGeometryImages.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
+#include "tcPathTracing.h"
 #include "tcSpectralClustering.h"
+#include "tcSurfaceDistance.h"
 
 #include "tc/array_names.h"
+#include "tc/atlas.h"
 
 #include <QAction>
 #include <QApplication>
@@ -30,29 +37,45 @@
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStackedWidget>
 #include <QStatusBar>
+#include <QTextDocumentFragment>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkErrorCode.h>
 #include <vtkExtractEdges.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGlyph3DMapper.h>
+#include <vtkImageActor.h>
+#include <vtkImageData.h>
+#include <vtkImageMapper3D.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkLinearSubdivisionFilter.h>
 #include <vtkLookupTable.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
+#include <vtkTable.h>
+#include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
@@ -63,9 +86,10 @@
 namespace
 {
 const char* const kStageNames[] = { "input", "preparation", "curvature", "clusters", "features",
-  "base" };
+  "base", "patches", "atlas", "reconstruction" };
 const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature", "Spectral clusters",
-  "Feature lines and corners", "Base complex (MAPS)" };
+  "Feature lines and corners", "Base complex (MAPS)", "Triangle patches and paths",
+  "Geometry-image atlas", "Reconstruction and its error" };
 static_assert(
   sizeof(kStageNames) / sizeof(*kStageNames) == tcViewerWindow::StageCount, "one name per stage");
 static_assert(sizeof(kStageLabels) / sizeof(*kStageLabels) == tcViewerWindow::StageCount,
@@ -87,6 +111,53 @@ void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
   lut->SetTableRange(range);
   lut->ForceBuild();
 }
+
+/// Normals as colours, the way TestGeometryImages draws the atlas: each component from [-1, 1]
+/// to [0, 255]. A lookup table cannot do it, because texels no chart covers (normal 0, see
+/// tc::AtlasImage) must stay dark rather than turn mid-grey.
+vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals)
+{
+  auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(normals->GetNumberOfTuples());
+  for (vtkIdType t = 0; t < normals->GetNumberOfTuples(); ++t)
+  {
+    double n[3];
+    normals->GetTuple(t, n);
+    const bool empty = n[0] == 0 && n[1] == 0 && n[2] == 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(t, c,
+        static_cast<unsigned char>(empty ? 40 : 127.5 + 127 * std::max(-1.0, std::min(1.0, n[c]))));
+    }
+  }
+  return colors;
+}
+
+/// Trackball camera, except that the left button pans the flat atlas picture instead of turning
+/// it out of its plane.
+class tcViewerInteractorStyle : public vtkInteractorStyleTrackballCamera
+{
+public:
+  static tcViewerInteractorStyle* New();
+  vtkTypeMacro(tcViewerInteractorStyle, vtkInteractorStyleTrackballCamera);
+
+  vtkRenderer* Flat = nullptr;
+
+  void OnLeftButtonDown() override
+  {
+    const int* xy = this->Interactor->GetEventPosition();
+    this->FindPokedRenderer(xy[0], xy[1]);
+    if (this->CurrentRenderer && this->CurrentRenderer == this->Flat)
+    {
+      this->GrabFocus(this->EventCallbackCommand);
+      this->StartPan();
+      return;
+    }
+    this->Superclass::OnLeftButtonDown();
+  }
+};
+vtkStandardNewMacro(tcViewerInteractorStyle);
 }
 
 tcViewerWindow::tcViewerWindow()
@@ -97,9 +168,20 @@ tcViewerWindow::tcViewerWindow()
   this->Refinement->SetInputConnection(this->Clustering->GetOutputPort());
   this->BaseComplex->SetInputConnection(this->Refinement->GetOutputPort());
   this->BaseEdges->SetInputConnection(this->BaseComplex->GetOutputPort(0));
-  for (int stage = 0; stage < StageCount; ++stage)
+  this->PathTracing->SetInputConnection(this->BaseComplex->GetOutputPort(1));
+  this->GeometryImages->SetInputConnection(this->PathTracing->GetOutputPort(0));
+  this->AtlasMesh->SetInputConnection(this->GeometryImages->GetOutputPort());
+  this->AtlasMesh->SetLevel(-1);
+  this->Reconstruction->SetInputConnection(this->GeometryImages->GetOutputPort());
+  // The error is measured against the prepared mesh: the surface the charts were cut from, on
+  // the reconstruction with its triangles split (see the class comment).
+  this->Subdivision->SetInputConnection(this->Reconstruction->GetOutputPort());
+  this->Subdivision->SetNumberOfSubdivisions(2);
+  this->Distance->SetInputConnection(0, this->Subdivision->GetOutputPort());
+  this->Distance->SetReferenceConnection(this->Preparation->GetOutputPort());
+  this->RebuiltEdges->SetInputConnection(this->Reconstruction->GetOutputPort());
+  for (vtkAlgorithm* a : this->Filters())
   {
-    vtkAlgorithm* a = this->StageAlgorithm(stage);
     a->AddObserver(vtkCommand::ProgressEvent, this, &tcViewerWindow::OnProgress);
     a->AddObserver(vtkCommand::ErrorEvent, this, &tcViewerWindow::OnError);
   }
@@ -109,12 +191,70 @@ tcViewerWindow::tcViewerWindow()
 
 tcViewerWindow::~tcViewerWindow() = default;
 
+std::vector<vtkAlgorithm*> tcViewerWindow::Filters() const
+{
+  return { this->Reader, this->Preparation, this->Curvature, this->Clustering, this->Refinement,
+    this->BaseComplex, this->PathTracing, this->GeometryImages, this->AtlasReader, this->AtlasMesh,
+    this->Reconstruction, this->Subdivision, this->Distance, this->AtlasWriter };
+}
+
 vtkAlgorithm* tcViewerWindow::StageAlgorithm(int stage) const
 {
+  // The filter whose update runs the stage: the atlas stage shows the atlas and the mesh
+  // rebuilt from it, the reconstruction its distance to the prepared mesh (none for an atlas
+  // file, which has no input mesh).
+  vtkAlgorithm* reconstruction = this->AtlasFile ? static_cast<vtkAlgorithm*>(this->Reconstruction)
+                                                 : static_cast<vtkAlgorithm*>(this->Distance);
   vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature, this->Clustering,
-    this->Refinement, this->BaseComplex };
+    this->Refinement, this->BaseComplex, this->PathTracing, this->AtlasMesh, reconstruction };
   static_assert(sizeof(algorithms) / sizeof(*algorithms) == StageCount, "one filter per stage");
   return algorithms[stage];
+}
+
+vtkAlgorithm* tcViewerWindow::AtlasSource() const
+{
+  return this->AtlasFile ? static_cast<vtkAlgorithm*>(this->AtlasReader)
+                         : static_cast<vtkAlgorithm*>(this->GeometryImages);
+}
+
+bool tcViewerWindow::StageAvailable(int stage) const
+{
+  return stage >= 0 && stage < StageCount && (!this->AtlasFile || stage >= AtlasStage);
+}
+
+void tcViewerWindow::UpdateStageAvailability()
+{
+  for (int s = 0; s < StageCount; ++s)
+  {
+    QListWidgetItem* item = this->Stages->item(s);
+    const bool available = this->StageAvailable(s);
+    item->setFlags(
+      available ? item->flags() | Qt::ItemIsEnabled : item->flags() & ~Qt::ItemIsEnabled);
+    item->setToolTip(available ? QString() : "Needs an input mesh: an atlas file is open");
+  }
+  // An opened atlas is shown as it is: its geometry-image parameters cannot change.
+  QWidget* geometryImages = this->Panels->widget(AtlasStage);
+  geometryImages->setEnabled(!this->AtlasFile);
+  geometryImages->setToolTip(
+    this->AtlasFile ? "The atlas comes from a file: open a mesh to build a new one" : QString());
+}
+
+QStringList tcViewerWindow::StageNames()
+{
+  QStringList names;
+  for (const char* name : kStageNames)
+  {
+    names << name;
+  }
+  return names;
+}
+
+bool tcViewerWindow::IsAtlasFile(const QString& path)
+{
+  // By extension first, so that a damaged .exr is reported by the atlas reader (which says what
+  // is wrong with it) rather than refused by the mesh reader as an unknown format.
+  return path.endsWith(".exr", Qt::CaseInsensitive) ||
+    tcAtlasReader::CanReadFile(path.toStdString().c_str());
 }
 
 int tcViewerWindow::StageFromName(const QString& name)
@@ -167,6 +307,21 @@ void tcViewerWindow::BuildUi()
   this->Legend->VisibilityOff();
   this->setCentralWidget(this->View);
 
+  // The atlas picture: a second renderer, added to the window only for the atlas stage.
+  this->AtlasRenderer->SetBackground(0.1, 0.1, 0.1);
+  this->AtlasRenderer->SetViewport(0.0, 0.0, 0.5, 1.0);
+  this->AtlasRenderer->GetActiveCamera()->ParallelProjectionOn();
+  this->AtlasPicture->InterpolateOff(); // one texel, one square: the samples stay visible
+  this->AtlasRenderer->AddActor(this->AtlasPicture);
+  this->AtlasCaption->SetInput("Atlas, finest mip step: normal (x, y, z) as (R, G, B)");
+  this->AtlasCaption->GetTextProperty()->SetFontSize(14);
+  this->AtlasCaption->GetTextProperty()->SetColor(0.9, 0.9, 0.9);
+  this->AtlasCaption->SetPosition(10, 10);
+  this->AtlasRenderer->AddActor2D(this->AtlasCaption);
+  vtkNew<tcViewerInteractorStyle> style;
+  style->Flat = this->AtlasRenderer;
+  this->View->interactor()->SetInteractorStyle(style);
+
   // Pipeline panel: stages, their parameters, apply, display options.
   auto* dock = new QDockWidget("Pipeline", this);
   dock->setObjectName("PipelineDock");
@@ -178,7 +333,9 @@ void tcViewerWindow::BuildUi()
   {
     this->Stages->addItem(label);
   }
-  this->Stages->setMaximumHeight(125);
+  // Every stage in view without scrolling; the parameter panel below takes what is left.
+  this->Stages->setFixedHeight(
+    this->Stages->sizeHintForRow(0) * this->Stages->count() + 2 * this->Stages->frameWidth() + 2);
   layout->addWidget(new QLabel("<b>Stages</b>", panel));
   layout->addWidget(this->Stages);
   this->Panels = new QStackedWidget(panel);
@@ -189,6 +346,12 @@ void tcViewerWindow::BuildUi()
   this->Panels->addWidget(this->BuildClusteringPanel());
   this->Panels->addWidget(this->BuildRefinementPanel());
   this->Panels->addWidget(this->BuildBaseComplexPanel());
+  this->Panels->addWidget(new QLabel(
+    "No parameters: each base edge is traced\nonto the mesh, which is cut into one\ntriangle "
+    "patch per base face.",
+    panel));
+  this->Panels->addWidget(this->BuildGeometryImagesPanel());
+  this->Panels->addWidget(this->BuildReconstructionPanel());
   layout->addWidget(this->Panels);
   auto* apply = new QPushButton("Apply", panel);
   layout->addWidget(apply);
@@ -197,7 +360,7 @@ void tcViewerWindow::BuildUi()
   auto* form = new QFormLayout();
   this->ColorBy = new QComboBox(panel);
   form->addRow("Colour by", this->ColorBy);
-  this->ShowLines = new QCheckBox("Lines (crests, boundaries, features)", panel);
+  this->ShowLines = new QCheckBox("Lines (crests, boundaries, paths, edges)", panel);
   this->ShowLines->setChecked(true);
   form->addRow(this->ShowLines);
   this->ShowCorners = new QCheckBox("Corners", panel);
@@ -206,19 +369,42 @@ void tcViewerWindow::BuildUi()
   this->ShowEdges = new QCheckBox("Mesh edges", panel);
   form->addRow(this->ShowEdges);
   layout->addLayout(form);
-  this->Info = new QLabel(panel);
+  // The summary scrolls rather than grow the window: screenshots keep one size.
+  auto* scroll = new QScrollArea(panel);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidgetResizable(true);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->viewport()->setAutoFillBackground(false);
+  this->Info = new QLabel(scroll);
   this->Info->setWordWrap(true);
+  this->Info->setAlignment(Qt::AlignLeft | Qt::AlignTop);
   this->Info->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(this->Info, 1, Qt::AlignTop);
+  this->Info->setAutoFillBackground(false);
+  scroll->setWidget(this->Info);
+  layout->addWidget(scroll, 1);
   dock->setWidget(panel);
   dock->setMinimumWidth(260);
   this->addDockWidget(Qt::LeftDockWidgetArea, dock);
 
+  // The panel stack is as tall as the shown panel, not as the tallest one, so that the summary
+  // below it has room.
+  connect(this->Panels, &QStackedWidget::currentChanged, this,
+    [this](int index)
+    {
+      for (int i = 0; i < this->Panels->count(); ++i)
+      {
+        const auto policy = i == index ? QSizePolicy::Preferred : QSizePolicy::Ignored;
+        this->Panels->widget(i)->setSizePolicy(policy, policy);
+      }
+      this->Panels->adjustSize();
+    });
+  emit this->Panels->currentChanged(this->Panels->currentIndex());
   connect(this->Stages, &QListWidget::currentRowChanged, this,
     [this](int row)
     {
       this->Panels->setCurrentIndex(std::max(0, row));
-      if (!this->Running && row >= 0 && row != this->CurrentStage && !this->FileName.isEmpty())
+      if (!this->Running && this->StageAvailable(row) && row != this->CurrentStage &&
+        !this->FileName.isEmpty())
       {
         this->ShowStage(row);
       }
@@ -236,8 +422,7 @@ void tcViewerWindow::BuildUi()
   connect(this->ShowLines, &QCheckBox::toggled, this,
     [this](bool on)
     {
-      this->LineActor->SetVisibility(
-        on && this->LineMapper->GetInput() && this->CurrentStage >= CurvatureStage);
+      this->LineActor->SetVisibility(on && this->HasLines);
       this->RenderWindow->Render();
     });
   connect(this->ShowCorners, &QCheckBox::toggled, this,
@@ -264,9 +449,9 @@ void tcViewerWindow::BuildUi()
   connect(this->Cancel, &QPushButton::clicked, this,
     [this]()
     {
-      for (int stage = 0; stage < StageCount; ++stage)
+      for (vtkAlgorithm* a : this->Filters())
       {
-        this->StageAlgorithm(stage)->AbortExecuteOn();
+        a->AbortExecuteOn();
       }
     });
 
@@ -277,8 +462,10 @@ void tcViewerWindow::BuildUi()
   connect(open, &QAction::triggered, this,
     [this]()
     {
-      const QString path = QFileDialog::getOpenFileName(this, "Open mesh", QString(),
-        "Meshes (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk);;All files (*)");
+      const QString path = QFileDialog::getOpenFileName(this, "Open mesh or atlas", QString(),
+        "Meshes and atlases (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk *.exr);;"
+        "Meshes (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk);;Atlases (*.exr);;"
+        "All files (*)");
       if (!path.isEmpty())
       {
         this->OpenFile(path, std::max(0, this->CurrentStage));
@@ -305,6 +492,22 @@ void tcViewerWindow::BuildUi()
         {
           this->ReportError("Cannot write " + path);
         }
+      }
+    });
+  QAction* saveAtlas = file->addAction("Save &atlas...");
+  connect(saveAtlas, &QAction::triggered, this,
+    [this]()
+    {
+      if (this->FileName.isEmpty())
+      {
+        this->ReportError("Open a mesh or an atlas first: there is no atlas to save.");
+        return;
+      }
+      const QString path = QFileDialog::getSaveFileName(this, "Save atlas",
+        QFileInfo(this->FileName).completeBaseName() + ".exr", "Atlases (*.exr)");
+      if (!path.isEmpty())
+      {
+        this->SaveAtlas(path);
       }
     });
   QAction* shot = file->addAction("Save &screenshot...");
@@ -449,6 +652,56 @@ QWidget* tcViewerWindow::BuildBaseComplexPanel()
   return w;
 }
 
+QWidget* tcViewerWindow::BuildGeometryImagesPanel()
+{
+  // Ranges and defaults come from the filters (their clamp macros and initializers).
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  tcGeometryImages* g = this->GeometryImages;
+  this->SampleBudget = new QSpinBox(w);
+  this->SampleBudget->setRange(static_cast<int>(g->GetSampleBudgetMinValue()),
+    static_cast<int>(std::min<vtkIdType>(g->GetSampleBudgetMaxValue(), 1000000000)));
+  this->SampleBudget->setSingleStep(1000);
+  this->SampleBudget->setSpecialValueText("input points");
+  this->SampleBudget->setValue(static_cast<int>(g->GetSampleBudget()));
+  this->SampleBudget->setToolTip(
+    "Total samples over all charts at their finest level; 0 uses the input's point count");
+  form->addRow("SampleBudget", this->SampleBudget);
+  this->MinLevel = new QSpinBox(w);
+  this->MinLevel->setRange(g->GetMinLevelMinValue(), g->GetMinLevelMaxValue());
+  this->MinLevel->setValue(g->GetMinLevel());
+  this->MinLevel->setToolTip("Smallest finest level of a chart (2^d + 1 samples per side)");
+  form->addRow("MinLevel", this->MinLevel);
+  this->MaxLevel = new QSpinBox(w);
+  this->MaxLevel->setRange(g->GetMaxLevelMinValue(), g->GetMaxLevelMaxValue());
+  this->MaxLevel->setValue(g->GetMaxLevel());
+  this->MaxLevel->setToolTip("Largest finest level of a chart (2^d + 1 samples per side)");
+  form->addRow("MaxLevel", this->MaxLevel);
+  this->CurvatureWeight = new QDoubleSpinBox(w);
+  this->CurvatureWeight->setRange(
+    g->GetCurvatureWeightMinValue(), std::min(g->GetCurvatureWeightMaxValue(), 1000.0));
+  this->CurvatureWeight->setSingleStep(0.1);
+  this->CurvatureWeight->setValue(g->GetCurvatureWeight());
+  this->CurvatureWeight->setToolTip(
+    "Weight of |mean curvature| x diagonal in the area that sets each chart's level");
+  form->addRow("CurvatureWeight", this->CurvatureWeight);
+  return w;
+}
+
+QWidget* tcViewerWindow::BuildReconstructionPanel()
+{
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  this->Level = new QSpinBox(w);
+  this->Level->setRange(
+    this->Reconstruction->GetLevelMinValue(), this->Reconstruction->GetLevelMaxValue());
+  this->Level->setSpecialValueText("-1 (finest)");
+  this->Level->setValue(this->Reconstruction->GetLevel());
+  this->Level->setToolTip("Level of every chart, capped by each chart's finest; -1: the finest");
+  form->addRow("Level", this->Level);
+  return w;
+}
+
 void tcViewerWindow::PushParameters()
 {
   // Setting an unchanged value does not modify a filter, so only what changed re-runs.
@@ -473,12 +726,32 @@ void tcViewerWindow::PushParameters()
   this->Refinement->SetCornerFraction(this->CornerFraction->value());
   this->BaseComplex->SetTargetFaces(this->TargetFaces->value());
   this->BaseComplex->SetMaxError(this->MaxError->value());
+  this->GeometryImages->SetSampleBudget(this->SampleBudget->value());
+  this->GeometryImages->SetMinLevel(this->MinLevel->value());
+  this->GeometryImages->SetMaxLevel(this->MaxLevel->value());
+  this->GeometryImages->SetCurvatureWeight(this->CurvatureWeight->value());
+  this->Reconstruction->SetLevel(this->Level->value());
 }
 
 bool tcViewerWindow::OpenFile(const QString& path, int stage)
 {
   this->FileName = path;
-  this->Reader->SetFileName(path.toStdString().c_str());
+  this->AtlasFile = IsAtlasFile(path);
+  if (this->AtlasFile)
+  {
+    this->AtlasReader->SetFileName(path.toStdString().c_str());
+    // An atlas has no input mesh: it opens on its reconstruction unless the atlas is asked for.
+    stage = stage == AtlasStage ? AtlasStage : ReconstructionStage;
+  }
+  else
+  {
+    this->Reader->SetFileName(path.toStdString().c_str());
+  }
+  // Re-connecting the same output is no change, so switching files of one kind re-runs nothing
+  // that does not depend on the file.
+  this->AtlasMesh->SetInputConnection(this->AtlasSource()->GetOutputPort());
+  this->Reconstruction->SetInputConnection(this->AtlasSource()->GetOutputPort());
+  this->UpdateStageAvailability();
   this->setWindowTitle("TriChart Viewer - " + QFileInfo(path).fileName());
   const bool ok = this->ShowStage(stage);
   if (ok)
@@ -496,21 +769,29 @@ bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
   this->Running = true;
   this->Cancel->setEnabled(true);
   this->Progress->setValue(0);
-  algorithm->Update(port);
+  if (algorithm->GetNumberOfOutputPorts() > port)
+  {
+    algorithm->Update(port);
+  }
+  else
+  {
+    algorithm->Update(); // a writer: no output port, Update() is what runs it
+  }
   this->Running = false;
   this->Cancel->setEnabled(false);
   bool aborted = false;
-  for (int stage = 0; stage < StageCount; ++stage)
+  for (vtkAlgorithm* a : this->Filters())
   {
-    aborted = aborted || this->StageAlgorithm(stage)->GetAbortExecute();
+    aborted = aborted || a->GetAbortExecute();
   }
   if (aborted)
   {
-    for (int stage = 0; stage < StageCount; ++stage)
+    for (vtkAlgorithm* a : this->Filters())
     {
-      this->StageAlgorithm(stage)->AbortExecuteOff();
-      this->StageAlgorithm(stage)->Modified(); // the cancelled result must not be reused
+      a->AbortExecuteOff();
+      a->Modified(); // the cancelled result must not be reused
     }
+    this->Error = "Cancelled";
     this->statusBar()->showMessage("Cancelled", 5000);
     return false;
   }
@@ -530,13 +811,28 @@ bool tcViewerWindow::ShowStage(int stage)
   {
     return false;
   }
-  this->PushParameters();
-  if (!this->Run(this->StageAlgorithm(stage)))
+  bool ok = this->StageAvailable(stage);
+  if (!ok)
+  {
+    this->Error =
+      QString("The %1 stage needs an input mesh; %2 is an atlas. Open a mesh to see it.")
+        .arg(kStageNames[stage])
+        .arg(QFileInfo(this->FileName).fileName());
+    this->ReportError(this->Error);
+  }
+  else
+  {
+    this->PushParameters();
+    ok = this->Run(this->StageAlgorithm(stage));
+  }
+  if (!ok)
   {
     this->SurfaceActor->VisibilityOff();
     this->LineActor->VisibilityOff();
     this->CornerActor->VisibilityOff();
     this->Legend->VisibilityOff();
+    this->HideAtlasPicture();
+    this->HasLines = false;
     this->Info->setText("<font color='#b00'>" + this->Error.toHtmlEscaped() + "</font>");
     this->RenderWindow->Render();
     return false;
@@ -549,9 +845,10 @@ bool tcViewerWindow::ShowStage(int stage)
   }
   vtkAlgorithm* algorithm = this->StageAlgorithm(stage);
   auto* surface = vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0));
-  // Crest lines, cluster boundaries and feature lines are each stage's port 1; the base
-  // complex is drawn as its edges over the parameterized input mesh (its port 1).
-  vtkPolyData* lines = stage >= CurvatureStage
+  // Crest lines, cluster boundaries, feature lines and paths are each stage's port 1; the base
+  // complex is drawn as its edges over the parameterized input mesh (its port 1), the
+  // reconstruction with its own edges over the split surface that carries the distances.
+  vtkPolyData* lines = stage >= CurvatureStage && stage <= PatchesStage
     ? vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(1))
     : nullptr;
   if (stage == BaseStage)
@@ -560,14 +857,38 @@ bool tcViewerWindow::ShowStage(int stage)
     surface = lines;
     lines = this->BaseEdges->GetOutput();
   }
+  vtkPolyData* rebuilt = this->Reconstruction->GetOutput();
+  if (stage == ReconstructionStage)
+  {
+    this->RebuiltEdges->Update();
+    lines = this->RebuiltEdges->GetOutput();
+  }
+  // Feature-like lines stand out; the many edges of a reconstruction must not hide its colours.
+  this->LineActor->GetProperty()->SetLineWidth(stage == ReconstructionStage ? 1.0 : 2.0);
   this->SurfaceActor->GetProperty()->SetOpacity(stage == BaseStage ? 0.6 : 1.0);
   vtkPolyData* corners = stage == FeaturesStage ? this->Refinement->GetOutput(2) : nullptr;
+  auto* atlas = vtkMultiBlockDataSet::SafeDownCast(this->AtlasSource()->GetOutputDataObject(0));
+  const bool split = this->RenderWindow->HasRenderer(this->AtlasRenderer);
+  if (stage == AtlasStage)
+  {
+    this->ShowAtlasPicture(atlas);
+  }
+  else
+  {
+    this->HideAtlasPicture();
+  }
   this->Display(surface, lines, corners);
+  if (!split && this->RenderWindow->HasRenderer(this->AtlasRenderer))
+  {
+    this->Renderer->ResetCamera(); // half the width now: fit the mesh again
+  }
 
+  // A reconstruction is counted as rebuilt, not as drawn (split for the distance colours).
+  vtkPolyData* counted = stage == ReconstructionStage ? rebuilt : surface;
   QString info = QString("<b>%1</b><br>%2 points, %3 cells")
                    .arg(kStageLabels[stage])
-                   .arg(surface->GetNumberOfPoints())
-                   .arg(surface->GetNumberOfCells());
+                   .arg(counted->GetNumberOfPoints())
+                   .arg(counted->GetNumberOfCells());
   const char* report = stage == InputStage ? this->Reader->GetReport()
     : stage == PreparationStage            ? this->Preparation->GetReport()
                                            : "";
@@ -578,8 +899,9 @@ bool tcViewerWindow::ShowStage(int stage)
     info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
   }
   const char* const lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines",
-    "base edges" };
-  if (lines)
+    "base edges", "paths", "", "" };
+  static_assert(sizeof(lineNames) / sizeof(*lineNames) == StageCount, "one line name per stage");
+  if (lines && *lineNames[stage])
   {
     info += QString("<br>%1 %2").arg(lines->GetNumberOfLines()).arg(lineNames[stage]);
   }
@@ -587,7 +909,144 @@ bool tcViewerWindow::ShowStage(int stage)
   {
     info += QString("<br>%1 corners").arg(corners->GetNumberOfPoints());
   }
+  if (stage == PatchesStage)
+  {
+    double range[2] = { 0.0, -1.0 };
+    if (vtkDataArray* patches = surface->GetCellData()->GetArray(tc::kPatchId))
+    {
+      patches->GetRange(range);
+    }
+    info += QString("<br>%1 patches").arg(static_cast<long long>(range[1]) + 1);
+  }
+  if (stage == AtlasStage && atlas)
+  {
+    auto* charts = vtkTable::SafeDownCast(atlas->GetBlock(0));
+    auto* images = vtkMultiBlockDataSet::SafeDownCast(atlas->GetBlock(1));
+    auto* finest = images ? vtkImageData::SafeDownCast(images->GetBlock(0)) : nullptr;
+    vtkDataArray* maxLevel =
+      charts ? vtkArrayDownCast<vtkDataArray>(charts->GetColumnByName(tc::kMaxLevel)) : nullptr;
+    if (charts && finest && maxLevel)
+    {
+      int dims[3];
+      finest->GetDimensions(dims);
+      double levels[2];
+      maxLevel->GetRange(levels);
+      info += QString("<br>%1 charts, finest levels %2 to %3<br>%4 mip steps, the finest %5 x %6 "
+                      "texels<br>(the mesh is every chart at its finest level)")
+                .arg(charts->GetNumberOfRows())
+                .arg(levels[0])
+                .arg(levels[1])
+                .arg(images->GetNumberOfBlocks())
+                .arg(dims[0])
+                .arg(dims[1]);
+    }
+  }
+  if (stage == ReconstructionStage)
+  {
+    double levels[2] = { 0.0, 0.0 };
+    if (vtkDataArray* level = rebuilt->GetCellData()->GetArray(tc::kLevel))
+    {
+      level->GetRange(levels);
+    }
+    const QString requested = this->Reconstruction->GetLevel() < 0
+      ? "finest"
+      : QString::number(this->Reconstruction->GetLevel());
+    info += levels[0] == levels[1]
+      ? QString("<br>Level %1 (asked: %2)").arg(levels[0]).arg(requested)
+      : QString("<br>Levels %1 to %2 (asked: %3)").arg(levels[0]).arg(levels[1]).arg(requested);
+    if (this->AtlasFile)
+    {
+      info += "<br>No distance colouring: an atlas file has no input mesh to measure against.";
+    }
+    else
+    {
+      const double diagonal = this->Distance->GetDiagonal() > 0 ? this->Distance->GetDiagonal() : 1;
+      info += QString("<br>Distance to the prepared mesh:<br>Hausdorff %1 (%2% of the "
+                      "diagonal)<br>RMS %3 (%4%)")
+                .arg(this->Distance->GetHausdorff(), 0, 'g', 4)
+                .arg(100.0 * this->Distance->GetHausdorff() / diagonal, 0, 'f', 3)
+                .arg(this->Distance->GetRmsDistance(), 0, 'g', 4)
+                .arg(100.0 * this->Distance->GetRmsDistance() / diagonal, 0, 'f', 3);
+    }
+  }
   this->Info->setText(info);
+  if (this->Batch)
+  {
+    std::cout << "trichart-viewer: " << this->InfoText().simplified().toStdString() << "\n";
+  }
+  return true;
+}
+
+void tcViewerWindow::SetReconstructionLevel(int level)
+{
+  this->Level->setValue(level);
+}
+
+QString tcViewerWindow::InfoText() const
+{
+  return QTextDocumentFragment::fromHtml(this->Info->text()).toPlainText();
+}
+
+void tcViewerWindow::ShowAtlasPicture(vtkMultiBlockDataSet* atlas)
+{
+  auto* images = atlas ? vtkMultiBlockDataSet::SafeDownCast(atlas->GetBlock(1)) : nullptr;
+  auto* finest = images ? vtkImageData::SafeDownCast(images->GetBlock(0)) : nullptr;
+  vtkDataArray* normals = finest ? finest->GetPointData()->GetArray(tc::kAtlasNormal) : nullptr;
+  if (!normals || normals->GetNumberOfComponents() != 3)
+  {
+    this->HideAtlasPicture();
+    return;
+  }
+  auto picture = vtkSmartPointer<vtkImageData>::New();
+  picture->SetDimensions(finest->GetDimensions());
+  picture->GetPointData()->SetScalars(NormalColors(normals));
+  this->AtlasPicture->GetMapper()->SetInputData(picture);
+  if (!this->RenderWindow->HasRenderer(this->AtlasRenderer))
+  {
+    this->RenderWindow->AddRenderer(this->AtlasRenderer);
+    this->Renderer->SetViewport(0.5, 0.0, 1.0, 1.0);
+  }
+  this->AtlasRenderer->ResetCamera();
+}
+
+void tcViewerWindow::HideAtlasPicture()
+{
+  if (this->RenderWindow->HasRenderer(this->AtlasRenderer))
+  {
+    this->RenderWindow->RemoveRenderer(this->AtlasRenderer);
+    this->Renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
+  }
+}
+
+bool tcViewerWindow::SaveAtlas(const QString& path)
+{
+  if (this->Running)
+  {
+    return false;
+  }
+  if (this->FileName.isEmpty())
+  {
+    this->Error = "Open a mesh or an atlas first: there is no atlas to save.";
+    this->ReportError(this->Error);
+    return false;
+  }
+  // The writer is one more filter of the pipeline: it builds what the atlas needs with progress
+  // and cancel, and reports its errors like any stage.
+  this->PushParameters();
+  this->AtlasWriter->SetInputConnection(this->AtlasSource()->GetOutputPort());
+  this->AtlasWriter->SetFileName(path.toStdString().c_str());
+  this->AtlasWriter->Modified(); // write even when nothing upstream changed
+  if (!this->Run(this->AtlasWriter))
+  {
+    return false;
+  }
+  if (this->AtlasWriter->GetErrorCode() != vtkErrorCode::NoError)
+  {
+    this->Error = "Cannot write the atlas " + path;
+    this->ReportError(this->Error);
+    return false;
+  }
+  this->statusBar()->showMessage("Saved the atlas as " + path, 5000);
   return true;
 }
 
@@ -597,6 +1056,7 @@ void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyDa
   this->Shown->ShallowCopy(surface);
   this->SurfaceMapper->SetInputData(this->Shown);
   this->SurfaceActor->VisibilityOn();
+  this->HasLines = lines != nullptr;
   if (lines)
   {
     auto copy = vtkSmartPointer<vtkPolyData>::New();
@@ -643,9 +1103,22 @@ void tcViewerWindow::FillArrayChoices(vtkPolyData* surface)
   // Each stage opens on its own result: base faces, clusters, or mean curvature.
   QString choice = previous;
   const QString clusters = QString("cell:") + tc::kClusterId;
+  const QString charts = QString("cell:") + tc::kChartId;
   if (this->CurrentStage == BaseStage)
   {
     choice = tc::kBaseFaceId;
+  }
+  else if (this->CurrentStage == PatchesStage)
+  {
+    choice = QString("cell:") + tc::kPatchId;
+  }
+  else if (this->CurrentStage == AtlasStage)
+  {
+    choice = charts;
+  }
+  else if (this->CurrentStage == ReconstructionStage)
+  {
+    choice = this->ColorBy->findText(tc::kDistance) >= 0 ? QString(tc::kDistance) : charts;
   }
   else if (this->ColorBy->findText(clusters) >= 0)
   {
@@ -713,6 +1186,11 @@ void tcViewerWindow::SetColorArray(const QString& name)
   this->Legend->SetLookupTable(lut);
   this->Legend->SetTitle(arrayName.toStdString().c_str());
   this->Legend->SetVisibility(!labels);
+}
+
+void tcViewerWindow::ResetCamera()
+{
+  this->Renderer->ResetCamera();
 }
 
 bool tcViewerWindow::SaveScreenshot(const QString& path)

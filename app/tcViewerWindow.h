@@ -4,20 +4,38 @@
  * @brief The main window of trichart-viewer: a stage browser over the TriChart pipeline.
  *
  * The pipeline is tcMeshReader -> tcMeshPreparation -> tcCurvature -> tcSpectralClustering ->
- * tcFeatureRefinement -> tcBaseComplex. Selecting a stage shows
+ * tcFeatureRefinement -> tcBaseComplex -> tcPathTracing -> tcGeometryImages ->
+ * tcGeometryImageMesh -> tcSurfaceDistance (against the prepared mesh). Selecting a stage shows
  * its output; its parameters are edited in the panel and "Apply" re-runs what changed (the
  * VTK pipeline's modified times decide). Long runs show progress and can be cancelled;
  * errors are shown in the window, which stays usable.
+ *
+ * An atlas file (.exr, tcAtlasReader) can be opened instead of a mesh: it feeds the atlas and
+ * reconstruction stages, the stages before them are unavailable (there is no input mesh) and
+ * the reconstruction is not coloured by distance (there is nothing to measure against).
+ *
+ * The vertices of a reconstruction are samples of the input surface, so their own distance to it
+ * is float rounding (about 1e-7 of the diagonal): the error lies inside the triangles. The
+ * reconstruction is therefore measured and drawn with each triangle split in 16
+ * (vtkLinearSubdivisionFilter: the same flat surface), which puts distance samples inside every
+ * triangle; its own edges are drawn over it as lines.
+ *
+ * The atlas stage splits the one render window in two viewports: the finest mip step of the
+ * atlas as a flat picture (normals as colours) on the left, the mesh rebuilt from it in 3-D on
+ * the right. One window keeps a single screenshot, camera and interactor; the left viewport
+ * pans and zooms but does not rotate.
  */
 #ifndef tcViewerWindow_h
 #define tcViewerWindow_h
 
 #include <QMainWindow>
+#include <QStringList>
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
 #include <string>
+#include <vector>
 
 class QCheckBox;
 class QComboBox;
@@ -30,22 +48,32 @@ class QPushButton;
 class QSpinBox;
 class QStackedWidget;
 class QVTKOpenGLNativeWidget;
-class tcCurvature;
+class tcAtlasReader;
+class tcAtlasWriter;
 class tcBaseComplex;
+class tcCurvature;
 class tcFeatureRefinement;
-class tcSpectralClustering;
+class tcGeometryImageMesh;
+class tcGeometryImages;
 class tcMeshPreparation;
 class tcMeshReader;
+class tcPathTracing;
+class tcSpectralClustering;
+class tcSurfaceDistance;
 class vtkActor;
 class vtkAlgorithm;
 class vtkExtractEdges;
 class vtkGenericOpenGLRenderWindow;
+class vtkImageActor;
+class vtkLinearSubdivisionFilter;
+class vtkMultiBlockDataSet;
 class vtkObject;
 class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderer;
 class vtkScalarBarActor;
 class vtkSphereSource;
+class vtkTextActor;
 
 class tcViewerWindow : public QMainWindow
 {
@@ -60,6 +88,9 @@ public:
     ClustersStage,
     FeaturesStage,
     BaseStage,
+    PatchesStage,
+    AtlasStage,
+    ReconstructionStage,
     StageCount
   };
 
@@ -67,23 +98,45 @@ public:
   ~tcViewerWindow() override;
 
   /// Stage from its command-line name ("input", "preparation", "curvature", "clusters",
-  /// "features", "base"); -1 if unknown.
+  /// "features", "base", "patches", "atlas", "reconstruction"); -1 if unknown.
   static int StageFromName(const QString& name);
 
-  /// Opens a mesh and shows `stage`; false (with the error shown) on failure.
+  /// The command-line names of all stages, in pipeline order.
+  static QStringList StageNames();
+
+  /// True if `path` is opened as an atlas (.exr, or a file tcAtlasReader recognises).
+  static bool IsAtlasFile(const QString& path);
+
+  /// Opens a mesh and shows `stage`, or an atlas and shows its reconstruction (or the atlas
+  /// stage when that is `stage`); false (with the error shown) on failure.
   bool OpenFile(const QString& path, int stage = CurvatureStage);
 
-  /// Runs the pipeline up to `stage` and shows its output; false on error or cancel.
+  /// Runs the pipeline up to `stage` and shows its output; false on error, cancel or a stage
+  /// that needs an input mesh while an atlas file is open.
   bool ShowStage(int stage);
+
+  /// Runs the pipeline up to the atlas (or takes the opened atlas) and writes it with
+  /// tcAtlasWriter; false (with the error shown) on failure.
+  bool SaveAtlas(const QString& path);
+
+  /// Sets the level of the reconstruction panel (-1: each chart's finest); Apply or the next
+  /// stage shown uses it.
+  void SetReconstructionLevel(int level);
 
   /// Colours the surface by this array of the shown output ("" for a plain surface).
   void SetColorArray(const QString& name);
+
+  /// Fits the camera of the 3-D view to the shown surface.
+  void ResetCamera();
 
   /// Renders and saves the whole window as PNG.
   bool SaveScreenshot(const QString& path);
 
   /// The last error message ("" if the last run succeeded).
   QString LastError() const { return this->Error; }
+
+  /// The shown stage's summary (what the info label says) as plain text.
+  QString InfoText() const;
 
   /// In batch mode errors go to stderr instead of a dialog.
   void SetBatchMode(bool batch) { this->Batch = batch; }
@@ -99,10 +152,18 @@ private:
   QWidget* BuildClusteringPanel();
   QWidget* BuildRefinementPanel();
   QWidget* BuildBaseComplexPanel();
+  QWidget* BuildGeometryImagesPanel();
+  QWidget* BuildReconstructionPanel();
+  std::vector<vtkAlgorithm*> Filters() const;
   vtkAlgorithm* StageAlgorithm(int stage) const;
+  vtkAlgorithm* AtlasSource() const;
+  bool StageAvailable(int stage) const;
+  void UpdateStageAvailability();
   void PushParameters();
   bool Run(vtkAlgorithm* algorithm, int port = 0);
   void Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyData* corners);
+  void ShowAtlasPicture(vtkMultiBlockDataSet* atlas);
+  void HideAtlasPicture();
   void FillArrayChoices(vtkPolyData* surface);
   void ReportError(const QString& message);
   void AddRecentFile(const QString& path);
@@ -117,6 +178,15 @@ private:
   vtkNew<tcFeatureRefinement> Refinement;
   vtkNew<tcBaseComplex> BaseComplex;
   vtkNew<vtkExtractEdges> BaseEdges;
+  vtkNew<tcPathTracing> PathTracing;
+  vtkNew<tcGeometryImages> GeometryImages;
+  vtkNew<tcAtlasReader> AtlasReader;
+  vtkNew<tcGeometryImageMesh> AtlasMesh; ///< every chart at its finest level, for the atlas stage
+  vtkNew<tcGeometryImageMesh> Reconstruction;
+  vtkNew<vtkLinearSubdivisionFilter> Subdivision; ///< the reconstruction, each triangle in 16
+  vtkNew<tcSurfaceDistance> Distance;
+  vtkNew<vtkExtractEdges> RebuiltEdges;
+  vtkNew<tcAtlasWriter> AtlasWriter;
   vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkPolyDataMapper> SurfaceMapper;
@@ -127,6 +197,9 @@ private:
   vtkNew<vtkActor> CornerActor;
   vtkNew<vtkSphereSource> CornerSphere;
   vtkNew<vtkScalarBarActor> Legend;
+  vtkNew<vtkRenderer> AtlasRenderer;
+  vtkNew<vtkImageActor> AtlasPicture;
+  vtkNew<vtkTextActor> AtlasCaption;
   vtkSmartPointer<vtkPolyData> Shown;
 
   QVTKOpenGLNativeWidget* View = nullptr;
@@ -161,10 +234,17 @@ private:
   QDoubleSpinBox* CornerFraction = nullptr;
   QSpinBox* TargetFaces = nullptr;
   QDoubleSpinBox* MaxError = nullptr;
+  QSpinBox* SampleBudget = nullptr;
+  QSpinBox* MinLevel = nullptr;
+  QSpinBox* MaxLevel = nullptr;
+  QDoubleSpinBox* CurvatureWeight = nullptr;
+  QSpinBox* Level = nullptr;
 
   QString FileName;
   QString Error;
   int CurrentStage = InputStage;
+  bool AtlasFile = false; ///< the open file is an atlas: no input mesh
+  bool HasLines = false;  ///< the shown stage has lines to draw
   bool Batch = false;
   bool Running = false;
 };

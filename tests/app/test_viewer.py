@@ -1,7 +1,10 @@
-"""trichart-viewer --screenshot: one picture per stage, compared with its baseline; a missing
-or corrupt file is reported on stderr and the viewer still produces its window (no crash)."""
+"""trichart-viewer in batch mode: one picture per stage compared with its baseline, the
+reconstruction's error figures, an atlas file written by the viewer opened on its
+reconstruction, and bad files (a missing or corrupt mesh or atlas, an atlas saved where it cannot
+go) reported on stderr while the window stays usable (no crash)."""
 import os
 import pathlib
+import re
 import subprocess
 
 import pytest
@@ -10,20 +13,146 @@ from imagecompare import compare_with_baseline
 
 VIEWER = os.environ["TRICHART_VIEWER"]
 DATA = pathlib.Path(os.environ["TRICHART_TESTING_DATA"])
+BUNNY = DATA / "meshes" / "bunny_npm.off"
+STAGES = ["input", "preparation", "curvature", "clusters", "features", "base", "patches", "atlas",
+          "reconstruction"]
 
 
 def viewer(*args):
     return subprocess.run([VIEWER, *map(str, args)], capture_output=True, text=True, timeout=300)
 
 
-@pytest.mark.parametrize("stage", ["input", "preparation", "curvature", "clusters", "features",
-                                   "base"])
-def test_stage_screenshot_matches_baseline(stage, tmp_path):
-    shot = tmp_path / f"TestViewer_{stage}.png"
-    r = viewer(DATA / "meshes" / "bunny_npm.off", "--stage", stage, "--screenshot", shot)
-    assert r.returncode == 0, r.stderr
-    ok, detail = compare_with_baseline(shot, DATA / "baselines" / f"TestViewer_{stage}.png")
+def summary(stdout, title):
+    """The info text the viewer printed for the stage titled `title` (batch mode prints it)."""
+    lines = [line for line in stdout.splitlines() if line.startswith(f"trichart-viewer: {title}")]
+    assert lines, f"no '{title}' summary in {stdout!r}"
+    return lines[-1]
+
+
+def figures(text):
+    """The numbers of a reconstruction's summary."""
+    found = {"points": re.search(r"(\d+) points", text),
+             "cells": re.search(r"(\d+) cells", text),
+             "hausdorff": re.search(r"Hausdorff (\S+) \((\S+)% of the diagonal\)", text),
+             "rms": re.search(r"RMS (\S+) \((\S+)%\)", text),
+             "levels": re.search(r"Levels? (\d+)(?: to (\d+))?", text)}
+    return {key: match.groups() for key, match in found.items() if match}
+
+
+@pytest.fixture(scope="module")
+def bunny(tmp_path_factory):
+    """One viewer run over the bunny: every stage's picture (each framed as if shown alone) and
+    its atlas saved as File > Save atlas does."""
+    folder = tmp_path_factory.mktemp("bunny")
+    atlas = folder / "bunny.exr"
+    r = viewer(BUNNY, "--stage", ",".join(STAGES), "--screenshot", folder / "{stage}.png",
+               "--save-atlas", atlas)
+    return {"run": r, "folder": folder, "atlas": atlas}
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_stage_screenshot_matches_baseline(stage, bunny):
+    assert bunny["run"].returncode == 0, bunny["run"].stderr
+    ok, detail = compare_with_baseline(bunny["folder"] / f"{stage}.png",
+                                       DATA / "baselines" / f"TestViewer_{stage}.png")
     assert ok, detail
+
+
+def test_single_stage_run_draws_the_same_picture(tmp_path):
+    # The baselines come from one run over all stages; the reconstruction follows the atlas's
+    # split view there, and must look as when it is shown alone.
+    shot = tmp_path / "reconstruction.png"
+    r = viewer(BUNNY, "--stage", "reconstruction", "--screenshot", shot)
+    assert r.returncode == 0, r.stderr
+    ok, detail = compare_with_baseline(shot, DATA / "baselines" / "TestViewer_reconstruction.png")
+    assert ok, detail
+
+
+def test_reconstruction_reports_its_distance_to_the_prepared_mesh(bunny):
+    found = figures(summary(bunny["run"].stdout, "Reconstruction"))
+    print("bunny reconstruction:", found)
+    hausdorff, hausdorff_percent = map(float, found["hausdorff"])
+    rms, rms_percent = map(float, found["rms"])
+    assert 0 < rms < hausdorff
+    # Every chart at its finest level stays within a fraction of a percent of the surface.
+    assert rms_percent < 0.5 and hausdorff_percent < 5
+    assert int(found["points"][0]) > 1000
+
+
+def test_atlas_file_opens_on_its_reconstruction(bunny, tmp_path):
+    assert bunny["atlas"].stat().st_size > 0
+    shot = tmp_path / "reconstruction.png"
+    r = viewer(bunny["atlas"], "--stage", "reconstruction", "--screenshot", shot)
+    assert r.returncode == 0, r.stderr
+    # The same mesh as the pipeline's reconstruction, without distance (no input mesh).
+    read = figures(summary(r.stdout, "Reconstruction"))
+    built = figures(summary(bunny["run"].stdout, "Reconstruction"))
+    assert read["points"] == built["points"] and read["levels"] == built["levels"]
+    assert "hausdorff" not in read and "no input mesh" in r.stdout
+    ok, detail = compare_with_baseline(
+        shot, DATA / "baselines" / "TestViewer_reconstruction_atlasfile.png")
+    assert ok, detail
+
+
+def test_atlas_file_has_no_stages_before_the_atlas(bunny, tmp_path):
+    # Asked for a mesh stage, an atlas file still opens on its reconstruction ...
+    r = viewer(bunny["atlas"], "--stage", "curvature", "--screenshot", tmp_path / "shot.png")
+    assert r.returncode == 0, r.stderr
+    assert "Reconstruction" in r.stdout and "Curvature" not in r.stdout
+    # ... and refuses to go back to one.
+    r = viewer(bunny["atlas"], "--stage", "reconstruction,curvature", "--screenshot",
+               tmp_path / "{stage}.png")
+    assert r.returncode == 1 and "needs an input mesh" in r.stderr, r.stderr
+
+
+def test_level_zero_of_an_atlas_is_its_base_complex(bunny, tmp_path):
+    atlas = viewer(bunny["atlas"], "--stage", "atlas", "--screenshot", tmp_path / "atlas.png")
+    assert atlas.returncode == 0, atlas.stderr
+    charts = int(re.search(r"(\d+) charts", atlas.stdout).group(1))
+    r = viewer(bunny["atlas"], "--stage", "reconstruction", "--level", "0", "--screenshot",
+               tmp_path / "level0.png")
+    assert r.returncode == 0, r.stderr
+    # At level 0 every chart is one triangle between its three base vertices: a closed mesh
+    # of genus 0 (the bunny), so V - E + F = 2 with E = 3F / 2.
+    found = figures(summary(r.stdout, "Reconstruction"))
+    assert int(found["cells"][0]) == charts and found["levels"] == ("0", None)
+    assert int(found["points"][0]) - 3 * charts // 2 + charts == 2
+
+
+def corrupt_atlases(atlas):
+    """A truncated atlas (a write that stopped half-way) and text that only claims to be one."""
+    data = atlas.read_bytes()
+    return [("truncated.exr", data[: len(data) // 2]), ("text.exr", b"not an atlas\n" * 10)]
+
+
+@pytest.mark.parametrize("which", [0, 1])
+def test_corrupt_atlas_is_reported_and_the_viewer_stays_usable(which, bunny, tmp_path):
+    name, content = corrupt_atlases(bunny["atlas"])[which]
+    bad = tmp_path / name
+    bad.write_bytes(content)
+    shot = tmp_path / "reconstruction.png"
+    # The bad file first, then the good one in the same window.
+    r = viewer(bad, bunny["atlas"], "--stage", "reconstruction", "--screenshot", shot)
+    assert r.returncode == 1
+    assert "trichart-viewer: error:" in r.stderr and name in r.stderr, r.stderr
+    ok, detail = compare_with_baseline(
+        shot, DATA / "baselines" / "TestViewer_reconstruction_atlasfile.png")
+    assert ok, detail
+
+
+def test_an_opened_atlas_saved_again_is_the_same_file(bunny, tmp_path):
+    again = tmp_path / "again.exr"
+    r = viewer(bunny["atlas"], "--save-atlas", again)
+    assert r.returncode == 0, r.stderr
+    assert again.read_bytes() == bunny["atlas"].read_bytes()
+
+
+def test_saving_the_atlas_where_it_cannot_go_is_reported(bunny, tmp_path):
+    target = tmp_path / "no-such-folder" / "bunny.exr"
+    r = viewer(bunny["atlas"], "--save-atlas", target)
+    assert r.returncode == 1
+    assert "trichart-viewer: error:" in r.stderr and "no-such-folder" in r.stderr, r.stderr
+    assert not target.exists()
 
 
 @pytest.mark.parametrize("name,content", [("missing.off", None),
@@ -39,6 +168,13 @@ def test_bad_file_is_reported_not_fatal(name, content, tmp_path):
     assert shot.stat().st_size > 0  # the window was still drawn
 
 
-def test_unknown_stage_is_refused():
-    r = viewer(DATA / "meshes" / "cube.off", "--stage", "nonsense", "--screenshot", "x.png")
-    assert r.returncode == 2 and "unknown stage" in r.stderr
+@pytest.mark.parametrize("stage", ["nonsense", "base,nonsense"])
+def test_unknown_stage_is_refused(stage):
+    r = viewer(DATA / "meshes" / "cube.off", "--stage", stage, "--screenshot", "x{stage}.png")
+    assert r.returncode == 2 and "unknown stage 'nonsense'" in r.stderr
+    assert "reconstruction" in r.stderr  # the list of names
+
+
+def test_several_stages_need_a_file_name_pattern():
+    r = viewer(DATA / "meshes" / "cube.off", "--stage", "input,base", "--screenshot", "x.png")
+    assert r.returncode == 2 and "{stage}" in r.stderr
