@@ -112,28 +112,6 @@ void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
   lut->ForceBuild();
 }
 
-/// Normals as colours, the way TestGeometryImages draws the atlas: each component from [-1, 1]
-/// to [0, 255]. A lookup table cannot do it, because texels no chart covers (normal 0, see
-/// tc::AtlasImage) must stay dark rather than turn mid-grey.
-vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals)
-{
-  auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  colors->SetNumberOfComponents(3);
-  colors->SetNumberOfTuples(normals->GetNumberOfTuples());
-  for (vtkIdType t = 0; t < normals->GetNumberOfTuples(); ++t)
-  {
-    double n[3];
-    normals->GetTuple(t, n);
-    const bool empty = n[0] == 0 && n[1] == 0 && n[2] == 0;
-    for (int c = 0; c < 3; ++c)
-    {
-      colors->SetTypedComponent(t, c,
-        static_cast<unsigned char>(empty ? 40 : 127.5 + 127 * std::max(-1.0, std::min(1.0, n[c]))));
-    }
-  }
-  return colors;
-}
-
 /// Trackball camera, except that the left button pans the flat atlas picture instead of turning
 /// it out of its plane.
 class tcViewerInteractorStyle : public vtkInteractorStyleTrackballCamera
@@ -999,7 +977,7 @@ void tcViewerWindow::ShowAtlasPicture(vtkMultiBlockDataSet* atlas)
   }
   auto picture = vtkSmartPointer<vtkImageData>::New();
   picture->SetDimensions(finest->GetDimensions());
-  picture->GetPointData()->SetScalars(NormalColors(normals));
+  picture->GetPointData()->SetScalars(tcvtk::NormalColors(normals));
   this->AtlasPicture->GetMapper()->SetInputData(picture);
   if (!this->RenderWindow->HasRenderer(this->AtlasRenderer))
   {

@@ -4,6 +4,7 @@
 #include <vtkDataArray.h>
 #include <vtkLookupTable.h>
 #include <vtkMath.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,4 +57,23 @@ void LabelColors(vtkLookupTable* lut, vtkDataArray* values)
   }
   lut->Build();
 }
+vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals)
+{
+  auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(normals->GetNumberOfTuples());
+  for (vtkIdType t = 0; t < normals->GetNumberOfTuples(); ++t)
+  {
+    double n[3];
+    normals->GetTuple(t, n);
+    const bool empty = n[0] == 0 && n[1] == 0 && n[2] == 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(t, c,
+        static_cast<unsigned char>(empty ? 40 : 127.5 + 127 * std::max(-1.0, std::min(1.0, n[c]))));
+    }
+  }
+  return colors;
+}
+
 } // namespace tcvtk

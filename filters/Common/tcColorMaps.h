@@ -9,6 +9,9 @@
 
 #include "TriChartCommonModule.h"
 
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+
 class vtkDataArray;
 class vtkLookupTable;
 
@@ -21,6 +24,9 @@ TRICHARTCOMMON_EXPORT void DivergingColors(
 
 /// Well-separated colours (golden-ratio hues) for integer labels 0 .. max of `values`.
 TRICHARTCOMMON_EXPORT void LabelColors(vtkLookupTable* lut, vtkDataArray* values);
+/// Unit normals as RGB colours (each component from [-1, 1] to [0, 255]); zero normals (atlas
+/// texels no chart covers) stay dark rather than mid-grey, which a lookup table cannot do.
+TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals);
 } // namespace tcvtk
 
 #endif

@@ -5,6 +5,7 @@
 #include "tcAtlasReader.h"
 #include "tcAtlasWriter.h"
 #include "tcBaseComplex.h"
+#include "tcColorMaps.h"
 #include "tcFeatureRefinement.h"
 #include "tcGeometryImages.h"
 #include "tcPathTracing.h"
@@ -159,19 +160,7 @@ int TestGeometryImages(int argc, char* argv[])
   vtkDataArray* normals = finest->GetPointData()->GetArray(tc::kAtlasNormal);
   vtkNew<vtkImageData> picture;
   picture->SetDimensions(dims);
-  vtkNew<vtkUnsignedCharArray> colours;
-  colours->SetNumberOfComponents(3);
-  colours->SetNumberOfTuples(normals->GetNumberOfTuples());
-  for (vtkIdType t = 0; t < normals->GetNumberOfTuples(); ++t)
-  {
-    const double* n = normals->GetTuple3(t);
-    const bool empty = n[0] == 0 && n[1] == 0 && n[2] == 0;
-    for (int c = 0; c < 3; ++c)
-    {
-      colours->SetTypedComponent(t, c,
-        static_cast<unsigned char>(empty ? 40 : 127.5 + 127 * std::max(-1.0, std::min(1.0, n[c]))));
-    }
-  }
+  vtkSmartPointer<vtkUnsignedCharArray> colours = tcvtk::NormalColors(normals);
   picture->GetPointData()->SetScalars(colours);
   vtkNew<vtkImageActor> actor;
   actor->GetMapper()->SetInputData(picture);
