@@ -755,8 +755,8 @@ bool Tracer::direct(const Support& su, const Support& sv, Route& r) const
 /// top of the file), in the choice-th chart that holds it (0: the first; kNoChart when there are
 /// not that many). Charts in order: the star of a base vertex that is the third corner of a
 /// triangle of the edge (the triangle's corner and its opposite side then turn round that vertex
-/// in the same chart), or that is near an end; the two faces about a base edge; the other stars,
-/// lowest vertex first; those stars again with the faces outside them.
+/// in the same chart); the two faces about a base edge; the star of a base vertex near an end;
+/// the other stars, lowest vertex first; those stars again with the faces outside them.
 void Tracer::route(int32_t h, int choice, Route& r) const
 {
   const int32_t u = std::min(this->from(h), this->to(h)), v = std::max(this->from(h), this->to(h));
@@ -767,8 +767,9 @@ void Tracer::route(int32_t h, int choice, Route& r) const
     return;
   }
   // Stars that decide on which side the segment passes a base vertex it comes close to: those
-  // of a base vertex at the third corner of a triangle of the edge, then those of a base vertex
-  // with weight 1/2 or more at either end, heaviest first.
+  // of a base vertex at the third corner of a triangle of the edge (tried first), then those of
+  // a base vertex with weight 1/2 or more at either end, heaviest first (tried after the hinge
+  // charts below).
   int32_t first[8];
   int nfirst = 0;
   for (const int32_t s : { BaseIndex_[this->to(nextHe(h))], BaseIndex_[this->to(nextHe(Opp_[h]))] })
@@ -797,7 +798,7 @@ void Tracer::route(int32_t h, int choice, Route& r) const
       const double wb = std::max(su.weight(b), sv.weight(b));
       return wa > wb || (wa == wb && a < b);
     });
-  for (int i = 0; i < nfirst; ++i)
+  for (int i = 0; i < napex; ++i)
   {
     for (int outside = 0; outside < 2; ++outside)
     {
@@ -834,6 +835,23 @@ void Tracer::route(int32_t h, int choice, Route& r) const
     for (int k = 0; k < 3; ++k)
     {
       if (this->hingeRoute(su, sv, faces[i], k, r) && choice-- == 0)
+      {
+        return;
+      }
+    }
+  }
+  // Stars of a base vertex near an end only when no two faces about a base edge hold both ends.
+  // A triangle whose corners lie in two such faces is checked in their unfolding by
+  // buildBaseComplex (triangleValid), so its sides must be drawn there too. The z^a star of a
+  // base vertex with a narrow cone is far from that unfolding (armadillo, no features: a
+  // valence-3 base vertex whose ring is stretched 1000:1), and a side drawn straight in it
+  // passed the vertex through its third face instead of crossing the edge next to it; the
+  // triangle then looked as if it held the vertex and could not be cut.
+  for (int i = napex; i < nfirst; ++i)
+  {
+    for (int outside = 0; outside < 2; ++outside)
+    {
+      if (this->starRoute(su, sv, first[i], outside == 1, r) && choice-- == 0)
       {
         return;
       }
