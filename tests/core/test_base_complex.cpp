@@ -205,7 +205,8 @@ struct BaseFaces
 ///    their supports span, e.g. three base vertices): the barycentric plane of that face (sign
 ///    of the 3x3 barycentric determinant; every chart agrees);
 ///  - each image in one of two base faces sharing an edge: those two 3D triangles unfolded
-///    about the edge (the quadrilateral in which the path of that base edge is traced);
+///    about the edge (the quadrilateral in which the path of that base edge is traced), unless
+///    a corner is at an end of the edge where the two faces turn by pi or more;
 ///  - otherwise images around one base vertex s: the star of s flattened by z^a (MAPS).
 /// A triangle that fits none of these straddles the base complex and fails too.
 FlipCount countFlips(
@@ -316,6 +317,29 @@ FlipCount countFlips(
         };
         std::map<int32_t, std::array<double, 2>> at = { { a, { 0.0, 0.0 } }, { b, { L, 0.0 } },
           { c, apex(c, 1.0) }, { d, apex(d, -1.0) } };
+        // Not when a corner is at an end of the edge where f and g turn by pi or more: the
+        // triangle may lie outside the unfolding there; the star of that corner decides.
+        auto turn = [&](int32_t o, int32_t u, int32_t v)
+        {
+          const auto &po = at.at(o), &pu = at.at(u), &pv = at.at(v);
+          return (pu[0] - po[0]) * (pv[1] - po[1]) - (pu[1] - po[1]) * (pv[0] - po[0]);
+        };
+        bool reflex = false;
+        for (int j = 0; j < 3; ++j)
+        {
+          if (sup[j].size() == 1 && sup[j][0].first == a)
+          {
+            reflex |= !(turn(a, d, c) > 0.0);
+          }
+          if (sup[j].size() == 1 && sup[j][0].first == b)
+          {
+            reflex |= !(turn(b, c, d) > 0.0);
+          }
+        }
+        if (reflex)
+        {
+          continue;
+        }
         std::array<double, 2> p[3];
         for (int j = 0; j < 3; ++j)
         {

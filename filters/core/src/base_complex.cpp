@@ -1810,6 +1810,26 @@ bool Simplifier::triangleValid(int64_t t, int32_t* starCentre) const
       };
       const int32_t ids[4] = { a, b, c, d };
       const P2 at[4] = { { 0.0, 0.0 }, { L, 0.0 }, apex(c, 1.0), apex(d, -1.0) };
+      // A corner at an end of the hinge edge where the two faces together turn by pi or more:
+      // a triangle there can be positive in the unfolding and yet lie outside it (its angle at
+      // that end is the reflex rest of the plane), so the hinge does not hold it. tracePaths
+      // draws the side opposite such a corner in the corner's star (bunny_glmark2 with features:
+      // a saddle base vertex whose two faces span 181.7 degrees in 3D but 174.9 in its z^a star,
+      // where the triangle is inverted); the star chart below decides, as it does there.
+      bool reflexCorner = false;
+      for (int j = 0; j < 3; ++j)
+      {
+        if (sup[j].n == 1 && (sup[j].v[0] == a || sup[j].v[0] == b))
+        {
+          // Convex at a when d, a, c turn left; at b when c, b, d do.
+          reflexCorner |= sup[j].v[0] == a ? !(orient(at[0], at[3], at[2]) > 0.0)
+                                           : !(orient(at[1], at[2], at[3]) > 0.0);
+        }
+      }
+      if (reflexCorner)
+      {
+        continue;
+      }
       P2 p[3];
       for (int j = 0; j < 3; ++j)
       {
