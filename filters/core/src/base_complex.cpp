@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/base_complex.h"
 
+#include "vec3.h"
+
 #include "tc/errors.h"
 
 // How this file works, in the order run() calls it:
@@ -53,26 +55,11 @@ inline int32_t prevHe(int32_t h)
   return h % 3 == 0 ? h + 2 : h - 1;
 }
 
-struct V3
-{
-  double x, y, z;
-};
-inline V3 sub(const V3& a, const V3& b)
-{
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
-}
-inline V3 cross(const V3& a, const V3& b)
-{
-  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
-}
-inline double dot(const V3& a, const V3& b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline double norm(const V3& a)
-{
-  return std::sqrt(dot(a, a));
-}
+using detail::cross;
+using detail::dot;
+using detail::norm;
+using detail::sub;
+using detail::V3;
 
 struct P2
 {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/path_tracing.h"
 
+#include "vec3.h"
+
 #include "tc/errors.h"
 #include "tc/parallel.h"
 
@@ -75,26 +77,11 @@ inline double cross(const P2& a, const P2& b)
   return a.x * b.y - a.y * b.x;
 }
 
-struct V3
-{
-  double x, y, z;
-};
-inline V3 sub(const V3& a, const V3& b)
-{
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
-}
-inline V3 cross(const V3& a, const V3& b)
-{
-  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
-}
-inline double dot(const V3& a, const V3& b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline double norm(const V3& a)
-{
-  return std::sqrt(dot(a, a));
-}
+using detail::cross;
+using detail::dot;
+using detail::norm;
+using detail::sub;
+using detail::V3;
 
 /// The image of an input vertex: its base vertices with non-zero barycentrics (1: a base vertex,
 /// 2: a point of a base edge, 3: inside a base face).
