@@ -46,32 +46,31 @@ vtkSmartPointer<vtkDoubleArray> doubleColumn(const char* name, int components, v
   return array;
 }
 
-/// The column `name` as an int array of `rows` x at least `components`, or nullptr.
-vtkIntArray* intColumnOf(vtkTable* table, const char* name, int components, std::string& error)
+/// The column `name` as an array of type A with the table's rows and at least `components`
+/// components, or nullptr with the reason in `error`.
+template <typename A>
+A* columnOf(vtkTable* table, const char* name, int components, const char* kind, std::string& error)
 {
-  auto* array = vtkIntArray::SafeDownCast(table->GetColumnByName(name));
+  auto* array = A::SafeDownCast(table->GetColumnByName(name));
   if (!array || array->GetNumberOfTuples() != table->GetNumberOfRows() ||
     array->GetNumberOfComponents() < components)
   {
-    error = std::string("the chart table has no int column '") + name + "' with " +
+    error = std::string("the chart table has no ") + kind + " column '" + name + "' with " +
       std::to_string(components) + " components";
     return nullptr;
   }
   return array;
 }
 
+vtkIntArray* intColumnOf(vtkTable* table, const char* name, int components, std::string& error)
+{
+  return columnOf<vtkIntArray>(table, name, components, "int", error);
+}
+
 vtkDoubleArray* doubleColumnOf(
   vtkTable* table, const char* name, int components, std::string& error)
 {
-  auto* array = vtkDoubleArray::SafeDownCast(table->GetColumnByName(name));
-  if (!array || array->GetNumberOfTuples() != table->GetNumberOfRows() ||
-    array->GetNumberOfComponents() < components)
-  {
-    error = std::string("the chart table has no double column '") + name + "' with " +
-      std::to_string(components) + " components";
-    return nullptr;
-  }
-  return array;
+  return columnOf<vtkDoubleArray>(table, name, components, "double", error);
 }
 } // namespace
 

@@ -340,7 +340,7 @@ bool readIntField(
   if (!array || array->GetNumberOfComponents() != components)
   {
     error = std::string("field array ") + name + " with " + std::to_string(components) +
-      " components is missing (connect the second output of tcBaseComplex)";
+      " components is missing";
     return false;
   }
   v.resize(static_cast<size_t>(array->GetNumberOfValues()));
@@ -364,26 +364,15 @@ void AddIntField(vtkFieldData* fd, const char* name, int components, const std::
   fd->AddArray(array);
 }
 
-void AddBaseComplexFields(const tc::BaseComplexResult& base, vtkFieldData* fd)
+namespace
 {
-  AddIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices);
-  AddIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles);
-  AddIntField(fd, tc::kBaseEdgeIsFeature, 3,
-    std::vector<int32_t>(base.baseEdgeIsFeature.begin(), base.baseEdgeIsFeature.end()));
-}
-
-bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, std::string& error)
+/// The base complex as AddBaseComplexFields writes it, checked against a mesh of `numPoints`.
+bool readBaseComplexFields(
+  vtkFieldData* fd, vtkIdType numPoints, tc::BaseComplexResult& base, std::string& error)
 {
-  base = tc::BaseComplexResult();
-  vtkFieldData* fd = parameterized->GetFieldData();
-  const vtkIdType n = parameterized->GetNumberOfPoints();
-  std::vector<double> barycentric;
   if (!readIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices, error) ||
     !readIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles, error) ||
-    !readIntField(fd, tc::kBaseEdgeIsFeature, 3, base.baseEdgeIsFeature, error) ||
-    !ReadIntArray(parameterized->GetPointData(), tc::kBaseFaceId, n, base.vertexBaseFace, error) ||
-    !ReadArray(
-      parameterized->GetPointData(), tc::kBaseBarycentric, n, 3, base.vertexBarycentric, error))
+    !readIntField(fd, tc::kBaseEdgeIsFeature, 3, base.baseEdgeIsFeature, error))
   {
     return false;
   }
@@ -393,10 +382,9 @@ bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, st
     return false;
   }
   const int32_t nb = static_cast<int32_t>(base.baseVertices.size());
-  const int32_t nf = static_cast<int32_t>(base.baseTriangles.size() / 3);
   for (int32_t v : base.baseVertices)
   {
-    if (v < 0 || v >= n)
+    if (v < 0 || v >= numPoints)
     {
       error = "BaseVertexIds names a point the mesh does not have";
       return false;
@@ -410,6 +398,31 @@ bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, st
       return false;
     }
   }
+  return true;
+}
+} // namespace
+
+void AddBaseComplexFields(const tc::BaseComplexResult& base, vtkFieldData* fd)
+{
+  AddIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices);
+  AddIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles);
+  AddIntField(fd, tc::kBaseEdgeIsFeature, 3,
+    std::vector<int32_t>(base.baseEdgeIsFeature.begin(), base.baseEdgeIsFeature.end()));
+}
+
+bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, std::string& error)
+{
+  base = tc::BaseComplexResult();
+  const vtkIdType n = parameterized->GetNumberOfPoints();
+  if (!readBaseComplexFields(parameterized->GetFieldData(), n, base, error) ||
+    !ReadIntArray(parameterized->GetPointData(), tc::kBaseFaceId, n, base.vertexBaseFace, error) ||
+    !ReadArray(
+      parameterized->GetPointData(), tc::kBaseBarycentric, n, 3, base.vertexBarycentric, error))
+  {
+    error += " (connect the second output of tcBaseComplex)";
+    return false;
+  }
+  const int32_t nf = static_cast<int32_t>(base.baseTriangles.size() / 3);
   for (int32_t f : base.vertexBaseFace)
   {
     if (f < 0 || f >= nf)
@@ -434,15 +447,12 @@ bool ReadPatchMesh(
   const vtkIdType nf = patches->GetNumberOfCells();
   vtkFieldData* fd = patches->GetFieldData();
   std::vector<int32_t> offsets;
-  std::vector<int32_t> steinerEdge;
   std::vector<double> steinerParameter;
   if (!ReadIntArray(patches->GetPointData(), tc::kInputPointId, np, mesh.inputPointId, error) ||
     !ReadIntArray(patches->GetCellData(), tc::kPatchId, nf, mesh.patchId, error) ||
     !ReadIntArray(patches->GetCellData(), tc::kInputCellId, nf, mesh.inputTriangle, error) ||
     !ReadArray(patches->GetPointData(), tc::kSteinerParameter, np, 1, steinerParameter, error) ||
-    !readIntField(fd, tc::kBaseVertexIds, 1, base.baseVertices, error) ||
-    !readIntField(fd, tc::kBaseTriangles, 3, base.baseTriangles, error) ||
-    !readIntField(fd, tc::kBaseEdgeIsFeature, 3, base.baseEdgeIsFeature, error) ||
+    !readBaseComplexFields(fd, np, base, error) ||
     !readIntField(fd, tc::kBaseEdges, 2, mesh.baseEdges, error) ||
     !readIntField(fd, tc::kFaceEdges, 3, mesh.faceEdges, error) ||
     !readIntField(fd, tc::kPathOffsets, 1, offsets, error) ||

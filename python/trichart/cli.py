@@ -65,6 +65,12 @@ def cmd_info(_args):
     return 0
 
 
+def _finest_level(atlas):
+    """The largest d_max over the charts of an atlas multiblock."""
+    levels = atlas.GetBlock(0).GetColumnByName("MaxLevel")
+    return max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
+
+
 def cmd_build(args):
     from .pipeline import build
 
@@ -83,8 +89,7 @@ def cmd_build(args):
     seconds = time.perf_counter() - start
     surface = result["surface"]
     charts = result["atlas"].GetBlock(0)
-    levels = charts.GetColumnByName("MaxLevel")
-    finest = max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
+    finest = _finest_level(result["atlas"])
     size = os.path.getsize(result["files"]["atlas"])
     print(f"{args.mesh}: {surface.GetNumberOfPoints()} points, "
           f"{surface.GetNumberOfCells()} triangles, "
@@ -119,8 +124,7 @@ def cmd_eval(args):
 
     reference, _ = prepare(read_mesh(args.mesh))
     atlas = read_atlas(args.atlas)
-    levels = atlas.GetBlock(0).GetColumnByName("MaxLevel")
-    finest = max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
+    finest = _finest_level(atlas)
     print(f"{args.atlas} against {args.mesh} ({reference.GetNumberOfPolys()} triangles)")
     print(f"{'level':>5} {'points':>9} {'triangles':>10} {'Hausdorff':>12} {'RMS':>12} "
           f"{'Hausdorff/diag':>15} {'RMS/diag':>10}")
