@@ -32,9 +32,10 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/Features/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/BaseComplex/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/GeometryImages/vtk.module
+    ${CMAKE_SOURCE_DIR}/filters/Rendering/vtk.module
   REQUEST_MODULES
     TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
-    TriChart::BaseComplex TriChart::GeometryImages
+    TriChart::BaseComplex TriChart::GeometryImages TriChart::Rendering
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -52,7 +53,7 @@ vtk_module_build(
 # The filter modules that users see (the Common module is internal).
 set(TRICHART_FILTER_MODULES
   TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex
-  TriChart::GeometryImages)
+  TriChart::GeometryImages TriChart::Rendering)
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(

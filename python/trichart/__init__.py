@@ -16,6 +16,9 @@ from .TriChartCurvature import *  # noqa: F401,F403
 from .TriChartFeatures import *  # noqa: F401,F403
 from .TriChartBaseComplex import *  # noqa: F401,F403
 from .TriChartGeometryImages import *  # noqa: F401,F403
+import vtkmodules.vtkRenderingCore  # noqa: E402,F401  (before the mapper's module, as above)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
+from .TriChartRendering import *  # noqa: E402,F401,F403
 
 try:
     from . import _config_build as _config  # running from a build tree

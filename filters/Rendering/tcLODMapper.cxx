@@ -1,0 +1,757 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tcLODMapper.h"
+
+#include "tcAtlasConversion.h"
+
+#include "tc/atlas.h"
+#include "tc/geometry_image_mesh.h"
+#include "tc/lod_selection.h"
+
+#include "tcGeometryImageBeginVS.h"
+#include "tcGeometryImageColorDecFS.h"
+#include "tcGeometryImageColorFS.h"
+#include "tcGeometryImageDecVS.h"
+#include "tcGeometryImageNormalVS.h"
+#include "tcGeometryImagePositionVS.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkIntArray.h>
+#include <vtkMath.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLBufferObject.h>
+#include <vtkOpenGLHelper.h>
+#include <vtkOpenGLIndexBufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLPolyDataMapper.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLShaderProperty.h>
+#include <vtkOpenGLVertexArrayObject.h>
+#include <vtkOpenGLVertexBufferObject.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkOpenGLState.h>
+#include <vtkTextureUnitManager.h>
+#include <vtkTransformFeedback.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+/// One buffer texture: the data in a buffer object, read by texelFetch through a texture.
+/// vtkTextureObject's CreateTextureBuffer finds no format for 4-component buffers in VTK 9.2, so
+/// the texture is made here with glTexBuffer; its unit comes from VTK's texture unit manager.
+struct BufferTexture
+{
+  vtkNew<vtkOpenGLBufferObject> buffer;
+  GLuint texture = 0;
+  int unit = -1;
+
+  template <typename T>
+  void Upload(const std::vector<T>& values, bool integer)
+  {
+    // An empty buffer texture is not allowed; one zero texel stands in.
+    const std::vector<T> data = values.empty() ? std::vector<T>(4, T(0)) : values;
+    this->buffer->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
+    if (this->texture == 0)
+    {
+      glGenTextures(1, &this->texture);
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, this->texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, integer ? GL_RGBA32I : GL_RGBA32F,
+      static_cast<GLuint>(this->buffer->GetHandle()));
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+  }
+
+  int Activate(vtkOpenGLRenderWindow* window)
+  {
+    this->unit = window->GetTextureUnitManager()->Allocate();
+    window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(this->unit));
+    glBindTexture(GL_TEXTURE_BUFFER, this->texture);
+    return this->unit;
+  }
+
+  void Deactivate(vtkOpenGLRenderWindow* window)
+  {
+    if (this->unit >= 0)
+    {
+      window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(this->unit));
+      glBindTexture(GL_TEXTURE_BUFFER, 0);
+      window->GetTextureUnitManager()->Free(this->unit);
+      this->unit = -1;
+    }
+  }
+
+  void Release()
+  {
+    if (this->texture != 0)
+    {
+      glDeleteTextures(1, &this->texture);
+      this->texture = 0;
+    }
+    this->buffer->ReleaseGraphicsResources();
+  }
+};
+
+/// The shader replacements of shaders/ (STYLE.md 7), as (vertex?, tag, replace first, text).
+struct Replacement
+{
+  bool vertex;
+  const char* tag;
+  const char* text;
+};
+const std::array<Replacement, 6> kReplacements{ {
+  { true, "//VTK::PositionVC::Dec", tcGeometryImageDecVS },
+  { true, "//VTK::CustomBegin::Impl", tcGeometryImageBeginVS },
+  { true, "//VTK::Normal::Impl", tcGeometryImageNormalVS },
+  { true, "//VTK::PositionVC::Impl", tcGeometryImagePositionVS },
+  { false, "//VTK::Normal::Dec", tcGeometryImageColorDecFS },
+  { false, "//VTK::Normal::Impl", tcGeometryImageColorFS },
+} };
+
+/// Adds the replacements to the actor's shader property unless it has them already (adding
+/// them again would modify the property and rebuild the shaders every frame).
+void InstallReplacements(vtkActor* actor)
+{
+  auto* property = vtkOpenGLShaderProperty::SafeDownCast(actor->GetShaderProperty());
+  if (!property)
+  {
+    return;
+  }
+  const auto& present = property->GetAllShaderReplacements();
+  for (const Replacement& r : kReplacements)
+  {
+    vtkShader::ReplacementSpec spec;
+    spec.OriginalValue = r.tag;
+    spec.ShaderType = r.vertex ? vtkShader::Vertex : vtkShader::Fragment;
+    spec.ReplaceFirst = true;
+    auto found = present.find(spec);
+    if (found == present.end() || found->second.Replacement != r.text)
+    {
+      property->AddShaderReplacement(spec.ShaderType, r.tag, true, r.text, false);
+    }
+  }
+}
+} // namespace
+
+/// The OpenGL side: a polydata mapper whose input is the grids of every level, drawing them
+/// instanced per level with the owner's buffer textures bound. Being a vtkOpenGLPolyDataMapper it
+/// keeps VTK's lighting, colour, representation and shader replacements.
+class tcLODGridMapper : public vtkOpenGLPolyDataMapper
+{
+public:
+  static tcLODGridMapper* New();
+  vtkTypeMacro(tcLODGridMapper, vtkOpenGLPolyDataMapper);
+  tcLODMapper* Owner = nullptr;
+
+protected:
+  tcLODGridMapper()
+  {
+    // Vertices carry grid coordinates, not positions: VTK must not shift and scale them.
+    this->SetVBOShiftScaleMethod(vtkOpenGLVertexBufferObject::DISABLE_SHIFT_SCALE);
+    this->ScalarVisibilityOff();
+    this->StaticOn();
+  }
+  void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+  void UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+};
+vtkStandardNewMacro(tcLODGridMapper);
+
+struct tcLODMapper::Internals
+{
+  vtkNew<tcLODGridMapper> gridMapper;
+  tc::Atlas atlas;
+  tc::LodCharts charts;
+  bool valid = false;
+  vtkMTimeType atlasTime = 0;
+  std::string error;
+
+  /// Levels 0 .. maxLevel, one after another: points (i, j, 0), triangles in grid order
+  /// (tc::gridVertexIndex), the vertex buffer every chart of a level shares.
+  vtkNew<vtkPolyData> grid;
+  std::vector<int64_t> gridTriangleStart; // per level, + 1
+
+  std::vector<double> instances{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  vtkTimeStamp instanceTime;
+  std::vector<int32_t> chartLevels; // empty: choose per view
+  std::vector<int32_t> levels;      // instances x charts, the last frame's choice
+  tc::LodDrawList list;
+  bool haveSelection = false;
+  double selectionSeconds = 0.0;
+
+  BufferTexture positions, normals, origins, chartTable, drawList, instanceRows;
+  vtkTimeStamp uploadTime;
+  vtkOpenGLRenderWindow* uploadWindow = nullptr;
+
+  vtkNew<vtkTransformFeedback> capture;
+  vtkNew<vtkFloatArray> captured;
+
+  double bounds[6] = { 0, -1, 0, -1, 0, -1 };
+  vtkTimeStamp boundsTime;
+};
+
+vtkStandardNewMacro(tcLODMapper);
+
+tcLODMapper::tcLODMapper()
+  : Internal(new Internals)
+{
+  this->Internal->gridMapper->Owner = this;
+  this->Internal->gridMapper->SetInputData(this->Internal->grid);
+  this->Internal->captured->SetNumberOfComponents(8);
+  this->Internal->capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "tcCaptureVSOutput");
+  this->Internal->capture->AddVarying(
+    vtkTransformFeedback::Color_RGBA_F, "tcCaptureGridVSOutput");
+  this->Internal->capture->SetPrimitiveMode(GL_TRIANGLES);
+}
+
+tcLODMapper::~tcLODMapper() = default;
+
+void tcLODMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "LODBias: " << this->LODBias << "\n";
+  os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
+  os << indent << "FreezeLOD: " << this->FreezeLOD << "\n";
+  os << indent << "Culling: " << this->Culling << "\n";
+  os << indent << "Stitching: " << this->Stitching << "\n";
+  os << indent << "FixedLevel: " << this->FixedLevel << "\n";
+  os << indent << "ColorMode: " << this->ColorMode << "\n";
+  os << indent << "Instances: " << this->GetNumberOfInstances() << "\n";
+}
+
+int tcLODMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  // Any data object: ToAtlas explains what an atlas is when it gets something else.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+void tcLODMapper::SetInputData(vtkDataObject* atlas)
+{
+  this->SetInputDataInternal(0, atlas);
+}
+
+void tcLODMapper::SetChartLevels(vtkIntArray* levels)
+{
+  std::vector<int32_t> values;
+  if (levels)
+  {
+    values.assign(levels->GetPointer(0), levels->GetPointer(0) + levels->GetNumberOfTuples());
+  }
+  if (values != this->Internal->chartLevels || (levels == nullptr) != values.empty())
+  {
+    this->Internal->chartLevels = values;
+    this->Internal->haveSelection = false;
+    this->Modified();
+  }
+}
+
+void tcLODMapper::SetInstanceMatrices(vtkDataArray* matrices)
+{
+  std::vector<double> values{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  if (matrices)
+  {
+    if (matrices->GetNumberOfComponents() != 16 || matrices->GetNumberOfTuples() < 1)
+    {
+      vtkErrorMacro("SetInstanceMatrices needs 16 components per tuple (a row-major 4 x 4 "
+                    "matrix) and at least one tuple; got "
+        << matrices->GetNumberOfComponents() << " components and "
+        << matrices->GetNumberOfTuples() << " tuples. The instances are unchanged.");
+      return;
+    }
+    values.resize(static_cast<size_t>(16 * matrices->GetNumberOfTuples()));
+    for (vtkIdType t = 0; t < matrices->GetNumberOfTuples(); ++t)
+    {
+      matrices->GetTuple(t, values.data() + 16 * t);
+    }
+  }
+  for (double v : values)
+  {
+    if (!std::isfinite(v))
+    {
+      vtkErrorMacro("SetInstanceMatrices: a matrix holds NaN or infinity; the instances are "
+                    "unchanged.");
+      return;
+    }
+  }
+  this->Internal->instances = values;
+  this->Internal->instanceTime.Modified();
+  this->Internal->haveSelection = false;
+  this->Modified();
+}
+
+int tcLODMapper::GetNumberOfInstances() const
+{
+  return static_cast<int>(this->Internal->instances.size() / 16);
+}
+
+vtkFloatArray* tcLODMapper::GetCapturedVertices()
+{
+  return this->Internal->captured;
+}
+
+vtkIdType tcLODMapper::GetTrianglesDrawn() const
+{
+  return static_cast<vtkIdType>(this->Internal->list.triangles);
+}
+
+vtkIdType tcLODMapper::GetChartsDrawn() const
+{
+  return static_cast<vtkIdType>(this->Internal->list.entries.size() / 4);
+}
+
+vtkIdType tcLODMapper::GetChartsAtLevel(int level) const
+{
+  const auto& counts = this->Internal->list.chartsPerLevel;
+  return level >= 0 && level < static_cast<int>(counts.size())
+    ? static_cast<vtkIdType>(counts[static_cast<size_t>(level)])
+    : 0;
+}
+
+double tcLODMapper::GetSelectionSeconds() const
+{
+  return this->Internal->selectionSeconds;
+}
+
+void tcLODMapper::GetLevels(vtkIntArray* levels) const
+{
+  const Internals& in = *this->Internal;
+  const int instances = this->GetNumberOfInstances();
+  const size_t nc = in.atlas.charts.size();
+  levels->SetNumberOfComponents(instances);
+  levels->SetNumberOfTuples(in.levels.size() == nc * static_cast<size_t>(instances)
+      ? static_cast<vtkIdType>(nc)
+      : 0);
+  for (vtkIdType c = 0; c < levels->GetNumberOfTuples(); ++c)
+  {
+    for (int i = 0; i < instances; ++i)
+    {
+      levels->SetTypedComponent(c, i, in.levels[static_cast<size_t>(i) * nc + static_cast<size_t>(c)]);
+    }
+  }
+}
+
+vtkIdType tcLODMapper::GetNumberOfCharts() const
+{
+  return this->Internal->valid ? static_cast<vtkIdType>(this->Internal->atlas.charts.size()) : 0;
+}
+
+bool tcLODMapper::UpdateAtlas()
+{
+  Internals& in = *this->Internal;
+  if (!this->Static && this->GetInputAlgorithm())
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  if (!input)
+  {
+    in.valid = false;
+    in.list = tc::LodDrawList();
+    return false;
+  }
+  if (input->GetMTime() == in.atlasTime)
+  {
+    return in.valid;
+  }
+  in.atlasTime = input->GetMTime();
+  in.valid = tcvtk::ToAtlas(input, in.atlas, in.error);
+  in.haveSelection = false;
+  if (!in.valid)
+  {
+    in.list = tc::LodDrawList();
+    vtkErrorMacro("Cannot draw the atlas: " << in.error << ".");
+    return false;
+  }
+  const int32_t finest = in.atlas.maxLevel();
+  if (finest > 15)
+  {
+    // The draw list packs four levels in 4 bits each.
+    in.valid = false;
+    vtkErrorMacro("Cannot draw the atlas: its finest level is "
+      << finest << "; tcLODMapper draws levels up to 15.");
+    return false;
+  }
+  in.charts = tc::LodCharts::fromAtlas(in.atlas);
+
+  // The grids of every level, one vertex buffer.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  vtkNew<vtkCellArray> polys;
+  in.gridTriangleStart.assign(1, 0);
+  vtkIdType base = 0;
+  for (int32_t n = 0; n <= std::max(finest, 0); ++n)
+  {
+    const int32_t big = 1 << n;
+    for (int32_t j = 0; j <= big; ++j)
+    {
+      for (int32_t i = 0; i + j <= big; ++i)
+      {
+        points->InsertNextPoint(i, j, 0.0);
+      }
+    }
+    for (int32_t j = 0; j < big; ++j)
+    {
+      for (int32_t i = 0; i + j < big; ++i)
+      {
+        const vtkIdType a = base + tc::gridVertexIndex(n, i, j);
+        const vtkIdType b = base + tc::gridVertexIndex(n, i + 1, j);
+        const vtkIdType c = base + tc::gridVertexIndex(n, i, j + 1);
+        const vtkIdType tri0[3] = { a, b, c };
+        polys->InsertNextCell(3, tri0);
+        if (i + j + 1 < big)
+        {
+          const vtkIdType d = base + tc::gridVertexIndex(n, i + 1, j + 1);
+          const vtkIdType tri1[3] = { b, d, c };
+          polys->InsertNextCell(3, tri1);
+        }
+      }
+    }
+    base += tc::gridVertexCount(n);
+    in.gridTriangleStart.push_back(in.gridTriangleStart.back() + int64_t(big) * big);
+  }
+  // Normals only so that VTK declares and lights them; the shader reads the normal image.
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(points->GetNumberOfPoints());
+  normals->FillValue(0.0f);
+  in.grid->Initialize();
+  in.grid->SetPoints(points);
+  in.grid->SetPolys(polys);
+  in.grid->GetPointData()->SetNormals(normals);
+  return true;
+}
+
+void tcLODMapper::UploadAtlas(vtkRenderer* ren)
+{
+  Internals& in = *this->Internal;
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  if (in.uploadWindow == window && in.uploadTime > in.grid->GetMTime() &&
+    in.uploadTime > in.instanceTime)
+  {
+    return;
+  }
+  const tc::Atlas& atlas = in.atlas;
+  // Every image, one after another, 4 floats per texel (position, then normal).
+  std::vector<int64_t> imageBase;
+  int64_t texels = 0;
+  for (const tc::AtlasImage& image : atlas.images)
+  {
+    imageBase.push_back(texels);
+    texels += int64_t(image.width) * image.height;
+  }
+  std::vector<float> position(static_cast<size_t>(4 * texels), 0.0f);
+  std::vector<float> normal(static_cast<size_t>(4 * texels), 0.0f);
+  for (size_t k = 0; k < atlas.images.size(); ++k)
+  {
+    const tc::AtlasImage& image = atlas.images[k];
+    const int64_t count = int64_t(image.width) * image.height;
+    for (int64_t t = 0; t < count; ++t)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        position[static_cast<size_t>(4 * (imageBase[k] + t) + c)] =
+          image.data[0][static_cast<size_t>(3 * t + c)];
+        normal[static_cast<size_t>(4 * (imageBase[k] + t) + c)] =
+          image.data[1][static_cast<size_t>(3 * t + c)];
+      }
+    }
+  }
+  // tc::atlasTexel as one linear index and a signed row stride per (chart, image).
+  std::vector<int32_t> origins;
+  std::vector<int32_t> charts;
+  for (const tc::AtlasChart& chart : atlas.charts)
+  {
+    charts.insert(
+      charts.end(), { static_cast<int32_t>(origins.size() / 4), chart.maxLevel, 0, 0 });
+    for (int32_t k = 0; k <= chart.maxLevel; ++k)
+    {
+      const auto& o = chart.origin[static_cast<size_t>(k)];
+      const int32_t width = atlas.images[static_cast<size_t>(k)].width;
+      const int64_t linear = imageBase[static_cast<size_t>(k)] + int64_t(o[1]) * width + o[0];
+      origins.insert(origins.end(),
+        { static_cast<int32_t>(linear), chart.rotated ? -width : width, 0, 0 });
+    }
+  }
+  std::vector<float> rows;
+  for (size_t m = 0; m < in.instances.size(); m += 16)
+  {
+    for (size_t e = 0; e < 12; ++e)
+    {
+      rows.push_back(static_cast<float>(in.instances[m + e]));
+    }
+  }
+  in.positions.Upload(position, false);
+  in.normals.Upload(normal, false);
+  in.origins.Upload(origins, true);
+  in.chartTable.Upload(charts, true);
+  in.instanceRows.Upload(rows, false);
+  in.uploadWindow = window;
+  in.uploadTime.Modified();
+}
+
+void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  const int instances = this->GetNumberOfInstances();
+  const size_t nc = in.atlas.charts.size();
+  if (this->FreezeLOD && in.haveSelection)
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  in.levels.resize(nc * static_cast<size_t>(instances));
+  if (!in.chartLevels.empty() || this->FixedLevel >= 0)
+  {
+    if (!in.chartLevels.empty() && in.chartLevels.size() != nc)
+    {
+      vtkErrorMacro("ChartLevels has " << in.chartLevels.size() << " values but the atlas has "
+                                       << nc << " charts; drawing every chart at its finest.");
+    }
+    for (size_t c = 0; c < nc; ++c)
+    {
+      const int32_t finest = in.atlas.charts[c].maxLevel;
+      int32_t level = in.chartLevels.size() == nc ? in.chartLevels[c]
+        : this->FixedLevel >= 0                   ? this->FixedLevel
+                                                  : finest;
+      level = level < 0 ? -1 : std::min(level, finest);
+      for (int i = 0; i < instances; ++i)
+      {
+        in.levels[static_cast<size_t>(i) * nc + c] = level;
+      }
+    }
+  }
+  else
+  {
+    int width = 0, height = 0;
+    ren->GetTiledSize(&width, &height);
+    vtkMatrix4x4* worldToClip = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+      ren->GetTiledAspectRatio(), -1, 1);
+    vtkNew<vtkMatrix4x4> modelToClip;
+    vtkMatrix4x4::Multiply4x4(worldToClip, act->GetMatrix(), modelToClip);
+    tc::LodOptions options;
+    options.bias = this->LODBias;
+    options.errorPixels = this->ErrorTarget;
+    options.cull = this->Culling;
+    tc::LodView view;
+    view.width = width;
+    view.height = height;
+    for (int i = 0; i < instances; ++i)
+    {
+      vtkMatrix4x4::Multiply4x4(modelToClip->GetData(),
+        in.instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
+      tc::selectLevels(in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
+    }
+  }
+  tc::buildDrawList(in.charts, in.levels.data(), instances, in.list);
+  in.drawList.Upload(in.list.entries, true);
+  in.haveSelection = true;
+  in.selectionSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void tcLODMapper::Render(vtkRenderer* ren, vtkActor* act)
+{
+  if (ren->GetRenderWindow()->CheckAbortStatus())
+  {
+    return;
+  }
+  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
+  const bool ready = this->UpdateAtlas();
+  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+  if (!ready || this->Internal->atlas.charts.empty())
+  {
+    return;
+  }
+  InstallReplacements(act);
+  this->UploadAtlas(ren);
+  this->SelectLevels(ren, act);
+  tcLODGridMapper* grid = this->Internal->gridMapper;
+  grid->SetClippingPlanes(this->ClippingPlanes);
+  grid->SetResolveCoincidentTopology(this->GetResolveCoincidentTopology());
+  grid->Render(ren, act);
+}
+
+void tcLODGridMapper::UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  this->Superclass::UpdateShaders(cellBO, ren, act);
+  if (!this->Owner->CaptureVertices || !cellBO.Program ||
+    cellBO.Program->GetTransformFeedback() == this->Owner->Internal->capture.Get())
+  {
+    return;
+  }
+  // Transform feedback needs its varyings named before the program links: link it again with
+  // them, then set what the first link's uniforms and vertex attributes held.
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  window->GetShaderCache()->ReadyShaderProgram(cellBO.Program, this->Owner->Internal->capture);
+  cellBO.VAO->ReleaseGraphicsResources();
+  cellBO.ShaderSourceTime.Modified();
+  this->SetCustomUniforms(cellBO, act);
+  this->SetMapperShaderParameters(cellBO, ren, act);
+  this->SetPropertyShaderParameters(cellBO, ren, act);
+  this->SetCameraShaderParameters(cellBO, ren, act);
+  this->SetLightingShaderParameters(cellBO, ren, act);
+}
+
+void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  const tcLODMapper* owner = this->Owner;
+  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+  const int64_t gridTriangles = in.gridTriangleStart.back();
+  if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty())
+  {
+    return;
+  }
+  // Surface: 3 indices per grid triangle; wireframe: 6 (its three edges); points: 3.
+  const size_t perTriangle = tris.IBO->IndexCount / static_cast<size_t>(gridTriangles);
+  if (perTriangle * static_cast<size_t>(gridTriangles) != tris.IBO->IndexCount)
+  {
+    vtkErrorMacro("Unexpected index buffer for the grids (" << tris.IBO->IndexCount
+                                                            << " indices); nothing drawn.");
+    return;
+  }
+  const GLenum mode =
+    static_cast<GLenum>(this->GetOpenGLMode(act->GetProperty()->GetRepresentation(), PrimitiveTris));
+  this->UpdateShaders(tris, ren, act);
+  vtkShaderProgram* program = tris.Program;
+  if (!program)
+  {
+    return;
+  }
+  BufferTexture* textures[] = { &in.positions, &in.normals, &in.origins, &in.chartTable,
+    &in.drawList, &in.instanceRows };
+  const char* names[] = { "tcPositions", "tcNormals", "tcOrigins", "tcCharts", "tcDrawList",
+    "tcInstances" };
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  for (size_t t = 0; t < 6; ++t)
+  {
+    program->SetUniformi(names[t], textures[t]->Activate(window));
+  }
+  program->SetUniformi("tcStitching", owner->Stitching ? 1 : 0);
+  program->SetUniformi("tcColorMode", owner->ColorMode);
+
+  size_t capturedVertices = 0;
+  if (owner->CaptureVertices)
+  {
+    for (size_t n = 0; n + 1 < in.list.levelStart.size(); ++n)
+    {
+      capturedVertices += static_cast<size_t>(in.list.levelStart[n + 1] - in.list.levelStart[n]) *
+        3 * static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
+    }
+    in.capture->SetNumberOfVertices(capturedVertices);
+    in.capture->SetPrimitiveMode(mode == GL_TRIANGLES ? GL_TRIANGLES : GL_POINTS);
+    in.capture->BindBuffer();
+  }
+  tris.IBO->Bind();
+  const size_t levels = std::min(in.list.levelStart.size(), in.gridTriangleStart.size()) - 1;
+  for (size_t n = 0; n < levels; ++n)
+  {
+    const int64_t first = in.list.levelStart[n];
+    const int64_t count = in.list.levelStart[n + 1] - first;
+    if (count == 0)
+    {
+      continue;
+    }
+    program->SetUniformi("tcLevel", static_cast<int>(n));
+    program->SetUniformi("tcDrawOffset", static_cast<int>(first));
+    const size_t offset = perTriangle * static_cast<size_t>(in.gridTriangleStart[n]);
+    const size_t indices =
+      perTriangle * static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
+    glDrawElementsInstanced(mode, static_cast<GLsizei>(indices), GL_UNSIGNED_INT,
+      reinterpret_cast<const GLvoid*>(offset * sizeof(GLuint)), static_cast<GLsizei>(count));
+  }
+  tris.IBO->Release();
+  if (owner->CaptureVertices)
+  {
+    in.capture->ReadBuffer();
+    const auto* data = static_cast<const float*>(in.capture->GetBufferData());
+    in.captured->SetNumberOfTuples(static_cast<vtkIdType>(capturedVertices));
+    if (data)
+    {
+      std::copy(data, data + 8 * capturedVertices, in.captured->GetPointer(0));
+    }
+    in.capture->ReleaseBufferData();
+  }
+  for (BufferTexture* texture : textures)
+  {
+    texture->Deactivate(window);
+  }
+}
+
+double* tcLODMapper::GetBounds()
+{
+  Internals& in = *this->Internal;
+  if (!this->UpdateAtlas() || in.atlas.charts.empty())
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+    return this->Bounds;
+  }
+  if (in.boundsTime < in.grid->GetMTime() || in.boundsTime < in.instanceTime)
+  {
+    double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (size_t m = 0; m < in.instances.size(); m += 16)
+    {
+      const double* t = in.instances.data() + m;
+      for (const tc::AtlasChart& chart : in.atlas.charts)
+      {
+        const double* c0 = chart.box.data();
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          double p[3] = { c0[0], c0[1], c0[2] };
+          for (int k = 0; k < 3; ++k)
+          {
+            if (corner & (1 << k))
+            {
+              for (int x = 0; x < 3; ++x)
+              {
+                p[x] += chart.box[static_cast<size_t>(3 + 3 * k + x)] - c0[x];
+              }
+            }
+          }
+          for (int r = 0; r < 3; ++r)
+          {
+            const double v = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
+            b[2 * r] = std::min(b[2 * r], v);
+            b[2 * r + 1] = std::max(b[2 * r + 1], v);
+          }
+        }
+      }
+    }
+    std::copy(b, b + 6, in.bounds);
+    in.boundsTime.Modified();
+  }
+  std::copy(in.bounds, in.bounds + 6, this->Bounds);
+  return this->Bounds;
+}
+
+void tcLODMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  Internals& in = *this->Internal;
+  for (BufferTexture* texture : { &in.positions, &in.normals, &in.origins, &in.chartTable,
+         &in.drawList, &in.instanceRows })
+  {
+    texture->Release();
+  }
+  in.capture->ReleaseGraphicsResources();
+  in.gridMapper->ReleaseGraphicsResources(window);
+  in.uploadWindow = nullptr;
+  in.haveSelection = false;
+}

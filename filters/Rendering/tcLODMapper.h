@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class tcLODMapper
+ * @brief Draws an atlas of triangular geometry images with view-dependent level of detail,
+ * stitched without cracks (Feng et al. 2010, section 6).
+ *
+ * Input: an atlas (tcGeometryImages, tcAtlasReader). The geometry images go to the GPU once as
+ * buffer textures; one triangular grid per level, shared by every chart, is the only vertex
+ * buffer, and it carries integer sample coordinates only. Per frame, on the CPU:
+ * - each chart's oriented box is projected and its level chosen (eq. 6 and 7 of the paper, with
+ *   LODBias; or, with ErrorTarget > 0, the coarsest level whose measured error projects to at
+ *   most ErrorTarget pixels); charts whose box lies outside the view are not drawn (Culling);
+ * - the drawn (instance, chart) pairs are sorted by level, with the levels of their neighbours.
+ * Then one instanced draw call per level draws every chart of that level in every instance; the
+ * vertex shader (shaders/GeometryImage*VS.glsl) fetches each vertex's sample with texelFetch,
+ * snaps the vertices of a side whose neighbour is coarser onto that neighbour's samples (eq. 8)
+ * and applies the instance's transform. The vertices it draws are those tcGeometryImageMesh
+ * builds for the same levels, bit for bit (CaptureVertices reads them back).
+ *
+ * Instances (a crowd): SetInstanceMatrices takes one 4 x 4 matrix per instance (16 components,
+ * row-major, model to actor coordinates; rigid with a uniform scale so that normals follow).
+ * Without it the atlas is drawn once, untransformed.
+ *
+ * Representations: surface and wireframe (the actor's property). Colour: the actor's, or per
+ * chart, or per level (ColorMode); lighting uses the atlas's normal image.
+ *
+ * Statistics of the last frame: GetTrianglesDrawn, GetChartsDrawn, GetChartsAtLevel,
+ * GetSelectionSeconds.
+ */
+#ifndef tcLODMapper_h
+#define tcLODMapper_h
+
+#include "TriChartRenderingModule.h"
+
+#include <vtkMapper.h>
+
+#include <memory>
+
+class vtkDataArray;
+class vtkDataObject;
+class vtkFloatArray;
+class vtkIntArray;
+
+class TRICHARTRENDERING_EXPORT tcLODMapper : public vtkMapper
+{
+public:
+  static tcLODMapper* New();
+  vtkTypeMacro(tcLODMapper, vtkMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The atlas to draw, without a pipeline (or SetInputConnection to a reader or filter).
+  void SetInputData(vtkDataObject* atlas);
+
+  enum ColorModes
+  {
+    ColorByActor = 0,
+    ColorByChart = 1,
+    ColorByLevel = 2
+  };
+
+  ///@{
+  /// Levels added to every chosen level (positive: finer); fractional values shift the rounding
+  /// of eq. 7. Default 0.
+  vtkSetMacro(LODBias, double);
+  vtkGetMacro(LODBias, double);
+  ///@}
+
+  ///@{
+  /// Screen-space error target in pixels: each chart takes the coarsest level whose measured
+  /// error (the atlas's LevelError) projects to at most this many pixels. 0 (default) chooses by
+  /// projected area instead (eq. 7); charts without measured errors always do.
+  vtkSetClampMacro(ErrorTarget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ErrorTarget, double);
+  ///@}
+
+  ///@{
+  /// Keep the last frame's levels and culling while the camera moves (to fly around a frozen
+  /// selection). Default off.
+  vtkSetMacro(FreezeLOD, bool);
+  vtkGetMacro(FreezeLOD, bool);
+  vtkBooleanMacro(FreezeLOD, bool);
+  ///@}
+
+  ///@{
+  /// Skip charts whose oriented box lies outside the view frustum. Default on.
+  vtkSetMacro(Culling, bool);
+  vtkGetMacro(Culling, bool);
+  vtkBooleanMacro(Culling, bool);
+  ///@}
+
+  ///@{
+  /// Snap sides to coarser neighbours (eq. 8). Off shows the cracks stitching mends. Default on.
+  vtkSetMacro(Stitching, bool);
+  vtkGetMacro(Stitching, bool);
+  vtkBooleanMacro(Stitching, bool);
+  ///@}
+
+  ///@{
+  /// One level for every chart (clamped to each chart's finest), in place of the view-dependent
+  /// choice; -1 (default) chooses per view.
+  vtkSetClampMacro(FixedLevel, int, -1, 15);
+  vtkGetMacro(FixedLevel, int);
+  ///@}
+
+  /// Levels per chart (one tuple per chart, clamped to each chart's finest; -1 leaves the chart
+  /// out), in place of the view-dependent choice, for every instance; nullptr (default) chooses
+  /// per view. The array is copied.
+  void SetChartLevels(vtkIntArray* levels);
+
+  ///@{
+  /// ColorByActor (default), ColorByChart or ColorByLevel.
+  vtkSetClampMacro(ColorMode, int, ColorByActor, ColorByLevel);
+  vtkGetMacro(ColorMode, int);
+  ///@}
+
+  /// One instance per tuple of 16 components (row-major 4 x 4, model to actor coordinates);
+  /// nullptr (default): one instance, the identity. The array is copied.
+  void SetInstanceMatrices(vtkDataArray* matrices);
+  int GetNumberOfInstances() const;
+
+  ///@{
+  /// Read back every vertex the next frames draw (transform feedback): GetCapturedVertices then
+  /// holds 8 floats per drawn triangle corner, in draw order: the model position x, y, z, the
+  /// chart, then the grid sample i, j (before stitching), the level and the instance.
+  vtkSetMacro(CaptureVertices, bool);
+  vtkGetMacro(CaptureVertices, bool);
+  vtkBooleanMacro(CaptureVertices, bool);
+  vtkFloatArray* GetCapturedVertices();
+  ///@}
+
+  ///@{
+  /// Statistics of the last frame: grid triangles issued, (instance, chart) pairs drawn, pairs
+  /// drawn at `level`, and the wall-clock seconds of the level selection (projection, choice,
+  /// sorting by level and upload of the draw list).
+  vtkIdType GetTrianglesDrawn() const;
+  vtkIdType GetChartsDrawn() const;
+  vtkIdType GetChartsAtLevel(int level) const;
+  double GetSelectionSeconds() const;
+  ///@}
+
+  /// The levels of the last frame, one tuple per chart and `instances` components (-1: not
+  /// drawn); `levels` is resized.
+  void GetLevels(vtkIntArray* levels) const;
+
+  /// Number of charts of the atlas (0 before the first render or update of bounds).
+  vtkIdType GetNumberOfCharts() const;
+
+  /// The bounds of every chart's oriented box, in every instance.
+  double* GetBounds() override;
+  void GetBounds(double bounds[6]) override { this->vtkAbstractMapper3D::GetBounds(bounds); }
+
+  void Render(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  tcLODMapper();
+  ~tcLODMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  double LODBias = 0.0;
+  double ErrorTarget = 0.0;
+  bool FreezeLOD = false;
+  bool Culling = true;
+  bool Stitching = true;
+  int FixedLevel = -1;
+  int ColorMode = ColorByActor;
+  bool CaptureVertices = false;
+
+private:
+  tcLODMapper(const tcLODMapper&) = delete;
+  void operator=(const tcLODMapper&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+  friend class tcLODGridMapper;
+
+  bool UpdateAtlas();
+  void UploadAtlas(vtkRenderer* ren);
+  void SelectLevels(vtkRenderer* ren, vtkActor* act);
+};
+
+#endif

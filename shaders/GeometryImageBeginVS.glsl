@@ -1,0 +1,23 @@
+//VTK::CustomBegin::Impl
+  // Which chart, at which level, stitched to which neighbour levels (tc::LodDrawList).
+  ivec4 tcEntry = texelFetch(tcDrawList, tcDrawOffset + gl_InstanceID);
+  ivec3 tcNeighbor = ivec3((tcEntry.z >> 4) & 15, (tcEntry.z >> 8) & 15, (tcEntry.z >> 12) & 15);
+  ivec2 tcGrid = ivec2(vertexMC.xy + 0.5);
+  ivec2 tcSample = tcStitch(tcLevel, tcNeighbor, tcGrid);
+  // tc::atlasTexel: the chart's level-n samples sit in image maxLevel - n, at origin + (i, j),
+  // or origin - (i, j) for a chart packed turned by 180 degrees (negative stride).
+  ivec4 tcChart = texelFetch(tcCharts, tcEntry.x);
+  ivec4 tcOrigin = texelFetch(tcOrigins, tcChart.x + tcChart.y - tcLevel);
+  int tcTexel = tcOrigin.x + tcSample.y * tcOrigin.y + (tcOrigin.y < 0 ? -tcSample.x : tcSample.x);
+  vec4 tcP = vec4(texelFetch(tcPositions, tcTexel).xyz, 1.0);
+  vec3 tcN = texelFetch(tcNormals, tcTexel).xyz;
+  vec4 tcRow0 = texelFetch(tcInstances, 3 * tcEntry.y);
+  vec4 tcRow1 = texelFetch(tcInstances, 3 * tcEntry.y + 1);
+  vec4 tcRow2 = texelFetch(tcInstances, 3 * tcEntry.y + 2);
+  tcPositionMC = vec4(dot(tcRow0, tcP), dot(tcRow1, tcP), dot(tcRow2, tcP), 1.0);
+  // Instance transforms are rigid with a uniform scale, so their 3 x 3 part turns normals too.
+  tcNormalMC = vec3(dot(tcRow0.xyz, tcN), dot(tcRow1.xyz, tcN), dot(tcRow2.xyz, tcN));
+  tcCaptureVSOutput = vec4(tcPositionMC.xyz, float(tcEntry.x));
+  tcCaptureGridVSOutput = vec4(vec2(tcGrid), float(tcLevel), float(tcEntry.y));
+  tcColorVSOutput = tcColorMode == 1 ? tcLabelColor(tcEntry.x)
+    : tcLabelColor(tcLevel + 1);

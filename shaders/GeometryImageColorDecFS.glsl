@@ -1,0 +1,3 @@
+//VTK::Normal::Dec
+in vec3 tcColorVSOutput;
+uniform int tcColorMode;

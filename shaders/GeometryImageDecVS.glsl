@@ -1,0 +1,52 @@
+//VTK::PositionVC::Dec
+// Triangular geometry images (Feng et al. 2010, section 6.2): every chart is drawn from the grid
+// of its level, shared by all charts; vertexMC.xy carries the grid sample (i, j) and nothing else.
+// Everything else comes from buffer textures, read with texelFetch (no filtering).
+uniform samplerBuffer tcPositions;  // one texel per atlas texel of every image: xyz
+uniform samplerBuffer tcNormals;    // the same for the normal image
+uniform isamplerBuffer tcOrigins;   // per (chart, image): (texel of sample (0, 0), signed row stride)
+uniform isamplerBuffer tcCharts;    // per chart: (first origin, maxLevel, 0, 0)
+uniform isamplerBuffer tcDrawList;  // per drawn (instance, chart): (chart, instance, levels, 0)
+uniform samplerBuffer tcInstances;  // per instance: the rows of its 3 x 4 transform
+uniform int tcLevel;                // the level of every chart of this draw call
+uniform int tcDrawOffset;           // first draw-list entry of this draw call
+uniform int tcStitching;            // 0 draws every chart unstitched (to show what eq. 8 mends)
+uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level
+
+out vec3 tcColorVSOutput;
+out vec4 tcCaptureVSOutput;   // model position and chart: read back by transform feedback
+out vec4 tcCaptureGridVSOutput; // (i, j, level, instance) of the same vertex
+
+vec4 tcPositionMC;
+vec3 tcNormalMC;
+
+// Eq. (8) of Feng et al.: a vertex on side k of a chart at level n whose neighbour across k is at
+// a coarser level m moves to parameter t - (t mod 2^(n - m)) of the same side; the rule and its
+// parameterization are those of tc::stitchedGridPoint (geometry_image_mesh.h), which this must
+// match vertex for vertex.
+ivec2 tcStitch(int n, ivec3 m, ivec2 ij)
+{
+  int big = 1 << n;
+  int side = -1;
+  int t = 0;
+  if (ij.y == 0 && ij.x != 0 && ij.x != big) { side = 0; t = ij.x; }
+  else if (ij.x + ij.y == big && ij.x != 0 && ij.y != 0) { side = 1; t = ij.y; }
+  else if (ij.x == 0 && ij.y != 0 && ij.y != big) { side = 2; t = big - ij.y; }
+  if (side < 0 || m[side] >= n || tcStitching == 0)
+  {
+    return ij;
+  }
+  int step = 1 << (n - m[side]);
+  t -= t % step;
+  if (side == 0) { return ivec2(t, 0); }
+  if (side == 1) { return ivec2(big - t, t); }
+  return ivec2(0, big - t);
+}
+
+// Golden-ratio hues at saturation 0.55, value 0.95: the colours tcColorMaps gives labels.
+vec3 tcLabelColor(int label)
+{
+  float h = fract(0.618033988749895 * float(label));
+  vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
+  return mix(vec3(1.0), k, 0.55) * 0.95;
+}

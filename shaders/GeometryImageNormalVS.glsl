@@ -1,0 +1,2 @@
+//VTK::Normal::Impl
+  normalVCVSOutput = normalMatrix * tcNormalMC;

@@ -1,0 +1,2 @@
+  vertexVCVSOutput = MCVCMatrix * tcPositionMC;
+  gl_Position = MCDCMatrix * tcPositionMC;
