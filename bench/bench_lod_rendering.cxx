@@ -6,7 +6,7 @@
 // goals of issue 6; then the LOD selection time for a 100K-chart scene.
 //
 //   xvfb-run -a tc_bench_lod_rendering [mesh] [instances] [frames]
-//     default: bunny_glmark2 (70K), 400 instances (a 20 x 20 grid), 60 frames
+//     default: bunny_glmark2 (70K; "" for the default), 400 instances (a 20 x 20 grid), 60 frames
 #include "bench_common.h"
 
 #include "tcBaseComplex.h"
@@ -85,8 +85,9 @@ Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double exten
 
 int main(int argc, char* argv[])
 {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0); // figures appear as they come, also into a file
   const std::string file =
-    argc > 1 ? argv[1] : std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj";
+    argc > 1 && argv[1][0] != 0 ? argv[1] : std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj";
   const int instances = argc > 2 ? std::max(1, std::atoi(argv[2])) : 400;
   const int frames = argc > 3 ? std::max(2, std::atoi(argv[3])) : 60;
   if (tcbench::Present({ file }).empty())

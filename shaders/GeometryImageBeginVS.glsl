@@ -9,7 +9,8 @@
   ivec4 tcChart = texelFetch(tcCharts, tcEntry.x);
   ivec4 tcOrigin = texelFetch(tcOrigins, tcChart.x + tcChart.y - tcLevel);
   int tcTexel = tcOrigin.x + tcSample.y * tcOrigin.y + (tcOrigin.y < 0 ? -tcSample.x : tcSample.x);
-  vec4 tcP = vec4(texelFetch(tcPositions, tcTexel).xyz, 1.0);
+  vec4 tcSampleValue = texelFetch(tcPositions, tcTexel);
+  vec4 tcP = vec4(tcSampleValue.xyz, 1.0);
   vec3 tcN = texelFetch(tcNormals, tcTexel).xyz;
   vec4 tcRow0 = texelFetch(tcInstances, 3 * tcEntry.y);
   vec4 tcRow1 = texelFetch(tcInstances, 3 * tcEntry.y + 1);
@@ -19,5 +20,7 @@
   tcNormalMC = vec3(dot(tcRow0.xyz, tcN), dot(tcRow1.xyz, tcN), dot(tcRow2.xyz, tcN));
   tcCaptureVSOutput = vec4(tcPositionMC.xyz, float(tcEntry.x));
   tcCaptureGridVSOutput = vec4(vec2(tcGrid), float(tcLevel), float(tcEntry.y));
+  float tcScaled = clamp((tcSampleValue.w - tcRange.x) / max(tcRange.y - tcRange.x, 1e-30), 0.0, 1.0);
   tcColorVSOutput = tcColorMode == 1 ? tcLabelColor(tcEntry.x)
-    : tcLabelColor(tcLevel + 1);
+    : tcColorMode == 2             ? tcLabelColor(tcLevel + 1)
+                                   : texelFetch(tcColors, int(tcScaled * 255.0 + 0.5)).rgb;

@@ -1,5 +1,5 @@
 //VTK::Normal::Impl
-  // Colour by chart or by level (tcLODMapper::ColorMode) in place of the actor's colour.
+  // Colour by chart, level or attribute (tcLODMapper::ColorMode) in place of the actor's.
   if (tcColorMode != 0)
   {
     ambientColor = ambientIntensity * tcColorVSOutput;

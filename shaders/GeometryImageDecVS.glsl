@@ -2,7 +2,7 @@
 // Triangular geometry images (Feng et al. 2010, section 6.2): every chart is drawn from the grid
 // of its level, shared by all charts; vertexMC.xy carries the grid sample (i, j) and nothing else.
 // Everything else comes from buffer textures, read with texelFetch (no filtering).
-uniform samplerBuffer tcPositions;  // one texel per atlas texel of every image: xyz
+uniform samplerBuffer tcPositions;  // one texel per atlas texel of every image: xyz, attribute
 uniform samplerBuffer tcNormals;    // the same for the normal image
 uniform isamplerBuffer tcOrigins;   // per (chart, image): (texel of sample (0, 0), signed row stride)
 uniform isamplerBuffer tcCharts;    // per chart: (first origin, maxLevel, 0, 0)
@@ -11,7 +11,9 @@ uniform samplerBuffer tcInstances;  // per instance: the rows of its 3 x 4 trans
 uniform int tcLevel;                // the level of every chart of this draw call
 uniform int tcDrawOffset;           // first draw-list entry of this draw call
 uniform int tcStitching;            // 0 draws every chart unstitched (to show what eq. 8 mends)
-uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level
+uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level, 3 attribute
+uniform samplerBuffer tcColors;     // the lookup table, 256 colours over tcRange
+uniform vec2 tcRange;
 
 out vec3 tcColorVSOutput;
 out vec4 tcCaptureVSOutput;   // model position and chart: read back by transform feedback

@@ -38,6 +38,7 @@
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkScalarsToColors.h>
 #include <vtkShaderProgram.h>
 #include <vtkOpenGLState.h>
 #include <vtkTextureUnitManager.h>
@@ -194,8 +195,11 @@ struct tcLODMapper::Internals
   bool haveSelection = false;
   double selectionSeconds = 0.0;
 
-  BufferTexture positions, normals, origins, chartTable, drawList, instanceRows;
+  BufferTexture positions, normals, origins, chartTable, drawList, instanceRows, colors;
   vtkTimeStamp uploadTime;
+  std::string uploadedAttribute;        // the ColorAttribute asked for at the last upload
+  bool attributeFound = false;          // and whether it is in the positions' fourth component
+  std::array<double, 2> attributeRange{ 0.0, 1.0 };
   vtkOpenGLRenderWindow* uploadWindow = nullptr;
 
   vtkNew<vtkTransformFeedback> capture;
@@ -219,7 +223,10 @@ tcLODMapper::tcLODMapper()
   this->Internal->capture->SetPrimitiveMode(GL_TRIANGLES);
 }
 
-tcLODMapper::~tcLODMapper() = default;
+tcLODMapper::~tcLODMapper()
+{
+  this->SetColorAttribute(nullptr);
+}
 
 void tcLODMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -231,6 +238,8 @@ void tcLODMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Stitching: " << this->Stitching << "\n";
   os << indent << "FixedLevel: " << this->FixedLevel << "\n";
   os << indent << "ColorMode: " << this->ColorMode << "\n";
+  os << indent << "ColorAttribute: " << (this->ColorAttribute ? this->ColorAttribute : "(none)")
+     << "\n";
   os << indent << "Instances: " << this->GetNumberOfInstances() << "\n";
 }
 
@@ -442,12 +451,35 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
 {
   Internals& in = *this->Internal;
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const std::string attributeName = this->ColorAttribute ? this->ColorAttribute : "";
   if (in.uploadWindow == window && in.uploadTime > in.grid->GetMTime() &&
-    in.uploadTime > in.instanceTime)
+    in.uploadTime > in.instanceTime && in.uploadedAttribute == attributeName)
   {
     return;
   }
   const tc::Atlas& atlas = in.atlas;
+  // The attribute to colour by rides in the fourth component of the positions.
+  int attribute = -1;
+  for (size_t a = 2; a < atlas.attributes.size(); ++a)
+  {
+    if (atlas.attributes[a].name == attributeName)
+    {
+      attribute = static_cast<int>(a);
+    }
+  }
+  if (!attributeName.empty() && attribute < 0)
+  {
+    std::string names;
+    for (size_t a = 2; a < atlas.attributes.size(); ++a)
+    {
+      names += (names.empty() ? "" : ", ") + atlas.attributes[a].name;
+    }
+    vtkErrorMacro("ColorAttribute '" << attributeName << "' is not an attribute of the atlas ("
+                                     << (names.empty() ? "it has none besides Position and Normal"
+                                                       : "it has " + names)
+                                     << "); the actor's colour is used.");
+  }
+  in.attributeRange = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   // Every image, one after another, 4 floats per texel (position, then normal).
   std::vector<int64_t> imageBase;
   int64_t texels = 0;
@@ -470,6 +502,21 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
           image.data[0][static_cast<size_t>(3 * t + c)];
         normal[static_cast<size_t>(4 * (imageBase[k] + t) + c)] =
           image.data[1][static_cast<size_t>(3 * t + c)];
+      }
+      if (attribute >= 0)
+      {
+        const int comps = atlas.attributes[static_cast<size_t>(attribute)].components;
+        const float* v = image.data[static_cast<size_t>(attribute)].data() + comps * t;
+        double value = comps == 1 ? v[0] : 0.0;
+        if (comps > 1)
+        {
+          for (int c = 0; c < comps; ++c)
+          {
+            value += double(v[c]) * v[c];
+          }
+          value = std::sqrt(value);
+        }
+        position[static_cast<size_t>(4 * (imageBase[k] + t) + 3)] = static_cast<float>(value);
       }
     }
   }
@@ -502,6 +549,28 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   in.origins.Upload(origins, true);
   in.chartTable.Upload(charts, true);
   in.instanceRows.Upload(rows, false);
+  // The range over the samples charts use (texels between charts hold 0).
+  if (attribute >= 0)
+  {
+    for (size_t c = 0; c < atlas.charts.size(); ++c)
+    {
+      const int32_t n = atlas.charts[c].maxLevel;
+      for (int32_t j = 0; j <= (1 << n); ++j)
+      {
+        for (int32_t i = 0; i + j <= (1 << n); ++i)
+        {
+          // A chart's finest level lies in image 0.
+          const auto xy = tc::atlasTexel(atlas.charts[c], n, i, j);
+          const float value = position[static_cast<size_t>(
+            4 * (int64_t(xy[1]) * atlas.images[0].width + xy[0]) + 3)];
+          in.attributeRange[0] = std::min(in.attributeRange[0], double(value));
+          in.attributeRange[1] = std::max(in.attributeRange[1], double(value));
+        }
+      }
+    }
+  }
+  in.uploadedAttribute = attributeName;
+  in.attributeFound = attribute >= 0;
   in.uploadWindow = window;
   in.uploadTime.Modified();
 }
@@ -612,7 +681,7 @@ void tcLODGridMapper::UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, v
 void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   tcLODMapper::Internals& in = *this->Owner->Internal;
-  const tcLODMapper* owner = this->Owner;
+  tcLODMapper* owner = this->Owner;
   vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
   const int64_t gridTriangles = in.gridTriangleStart.back();
   if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty())
@@ -635,17 +704,47 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
+  // Colour by attribute: the lookup table as 256 colours over the range.
+  int colorMode = owner->ColorMode;
+  std::array<double, 2> range = in.attributeRange;
+  if (colorMode == tcLODMapper::ColorByAttribute)
+  {
+    if (!in.attributeFound)
+    {
+      colorMode = tcLODMapper::ColorByActor;
+    }
+    vtkScalarsToColors* table = owner->GetLookupTable();
+    if (owner->GetUseLookupTableScalarRange())
+    {
+      range = { table->GetRange()[0], table->GetRange()[1] };
+    }
+    std::vector<float> colors(4 * 256);
+    for (int i = 0; i < 256; ++i)
+    {
+      double rgb[3];
+      table->GetColor(range[0] + (range[1] - range[0]) * i / 255.0, rgb);
+      std::copy(rgb, rgb + 3, colors.begin() + 4 * i);
+      colors[static_cast<size_t>(4 * i + 3)] = 1.0f;
+    }
+    in.colors.Upload(colors, false);
+  }
+  else if (in.colors.texture == 0)
+  {
+    in.colors.Upload(std::vector<float>(4, 0.0f), false);
+  }
   BufferTexture* textures[] = { &in.positions, &in.normals, &in.origins, &in.chartTable,
-    &in.drawList, &in.instanceRows };
+    &in.drawList, &in.instanceRows, &in.colors };
   const char* names[] = { "tcPositions", "tcNormals", "tcOrigins", "tcCharts", "tcDrawList",
-    "tcInstances" };
+    "tcInstances", "tcColors" };
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  for (size_t t = 0; t < 6; ++t)
+  for (size_t t = 0; t < 7; ++t)
   {
     program->SetUniformi(names[t], textures[t]->Activate(window));
   }
   program->SetUniformi("tcStitching", owner->Stitching ? 1 : 0);
-  program->SetUniformi("tcColorMode", owner->ColorMode);
+  program->SetUniformi("tcColorMode", colorMode);
+  const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
+  program->SetUniform2f("tcRange", rangeValues);
 
   size_t capturedVertices = 0;
   if (owner->CaptureVertices)
@@ -746,7 +845,7 @@ void tcLODMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& in = *this->Internal;
   for (BufferTexture* texture : { &in.positions, &in.normals, &in.origins, &in.chartTable,
-         &in.drawList, &in.instanceRows })
+         &in.drawList, &in.instanceRows, &in.colors })
   {
     texture->Release();
   }

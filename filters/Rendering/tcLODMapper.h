@@ -22,7 +22,8 @@
  * Without it the atlas is drawn once, untransformed.
  *
  * Representations: surface and wireframe (the actor's property). Colour: the actor's, or per
- * chart, or per level (ColorMode); lighting uses the atlas's normal image.
+ * chart, per level, or by an attribute of the atlas through the lookup table (ColorMode,
+ * ColorAttribute); lighting uses the atlas's normal image.
  *
  * Statistics of the last frame: GetTrianglesDrawn, GetChartsDrawn, GetChartsAtLevel,
  * GetSelectionSeconds.
@@ -55,7 +56,8 @@ public:
   {
     ColorByActor = 0,
     ColorByChart = 1,
-    ColorByLevel = 2
+    ColorByLevel = 2,
+    ColorByAttribute = 3
   };
 
   ///@{
@@ -109,8 +111,17 @@ public:
 
   ///@{
   /// ColorByActor (default), ColorByChart or ColorByLevel.
-  vtkSetClampMacro(ColorMode, int, ColorByActor, ColorByLevel);
+  vtkSetClampMacro(ColorMode, int, ColorByActor, ColorByAttribute);
   vtkGetMacro(ColorMode, int);
+  ///@}
+
+  ///@{
+  /// The atlas attribute ColorByAttribute shows (an array tcGeometryImages resampled, e.g.
+  /// "MeanCurvature"; the magnitude of a vector), mapped through the mapper's lookup table over
+  /// the attribute's range, or over the table's range with UseLookupTableScalarRange. An
+  /// unknown name is reported and the actor's colour is used.
+  vtkSetStringMacro(ColorAttribute);
+  vtkGetStringMacro(ColorAttribute);
   ///@}
 
   /// One instance per tuple of 16 components (row-major 4 x 4, model to actor coordinates);
@@ -165,6 +176,7 @@ protected:
   bool Stitching = true;
   int FixedLevel = -1;
   int ColorMode = ColorByActor;
+  char* ColorAttribute = nullptr;
   bool CaptureVertices = false;
 
 private:

@@ -17,7 +17,7 @@ def atlas():
     features, _, _ = trichart.refine_features(clusters)
     _, parameterized = trichart.base_complex(features)
     patches, _ = trichart.trace_paths(parameterized)
-    return trichart.geometry_images(patches)
+    return trichart.geometry_images(patches, resampled_arrays=["MeanCurvature"])
 
 
 def scene(atlas):
@@ -93,3 +93,42 @@ def test_not_an_atlas_draws_nothing(atlas):
     window.Render()  # the error is reported; nothing is drawn and nothing crashes
     assert mapper.GetNumberOfCharts() == 0
     assert mapper.GetTrianglesDrawn() == 0
+
+
+def pixels(window):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGB()
+    grab.Update()
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).astype(int)
+
+
+def test_color_by_attribute_maps_it_through_the_lookup_table(atlas):
+    from vtkmodules.vtkCommonCore import vtkLookupTable
+
+    mapper, window = scene(atlas)
+    window.GetRenderers().GetFirstRenderer().SetBackground(0, 0, 0)
+    mapper.SetFixedLevel(-1)
+    mapper.SetColorMode(trichart.tcLODMapper.ColorByAttribute)
+    mapper.SetColorAttribute("MeanCurvature")
+    table = vtkLookupTable()  # blue below the middle of the range, red above
+    table.SetNumberOfTableValues(2)
+    table.SetTableValue(0, 0, 0, 1, 1)
+    table.SetTableValue(1, 1, 0, 0, 1)
+    table.Build()
+    mapper.SetLookupTable(table)
+    window.Render()
+    rgb = pixels(window)
+    red = ((rgb[:, 0] > 40) & (rgb[:, 2] < 10)).sum()
+    blue = ((rgb[:, 2] > 40) & (rgb[:, 0] < 10)).sum()
+    # Mean curvature changes sign over the bunny: both halves of the table show.
+    assert red > 200 and blue > 200
+    # An attribute the atlas lacks is reported and the actor's grey is used: no pure hues.
+    mapper.SetColorAttribute("NoSuchArray")
+    window.Render()
+    rgb = pixels(window)
+    assert ((rgb[:, 0] > 40) & (rgb[:, 2] < 10)).sum() == 0
+    assert (rgb.max(axis=1) > 40).sum() > 400
