@@ -6,20 +6,8 @@ from trichart.pipeline import TriChartError
 
 
 @pytest.fixture(scope="module")
-def bunny():
-    import os
-    import pathlib
-
-    data = pathlib.Path(os.environ.get("TRICHART_TESTING_DATA",
-                                       pathlib.Path(__file__).parents[2] / "testing-data"))
-    clean, _ = trichart.prepare(trichart.read_mesh(data / "meshes" / "bunny_npm.off"))
-    surface, _ = trichart.curvature(clean)
-    clusters, _ = trichart.cluster(surface)
-    features, _, _ = trichart.refine_features(clusters)
-    base, parameterized = trichart.base_complex(features)
-    patches, paths = trichart.trace_paths(parameterized)
-    atlas = trichart.geometry_images(patches, resampled_arrays=["MeanCurvature"])
-    return {"clean": clean, "base": base, "patches": patches, "paths": paths, "atlas": atlas}
+def bunny(bunny_stages):
+    return bunny_stages
 
 
 def closed(mesh):

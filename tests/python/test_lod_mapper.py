@@ -1,23 +1,12 @@
 """tcLODMapper from Python: an atlas drawn with level of detail, in one or many instances."""
-import os
-import pathlib
-
 import pytest
 
 import trichart
 
 
 @pytest.fixture(scope="module")
-def atlas():
-    data = pathlib.Path(os.environ.get("TRICHART_TESTING_DATA",
-                                       pathlib.Path(__file__).parents[2] / "testing-data"))
-    clean, _ = trichart.prepare(trichart.read_mesh(data / "meshes" / "bunny_npm.off"))
-    surface, _ = trichart.curvature(clean)
-    clusters, _ = trichart.cluster(surface)
-    features, _, _ = trichart.refine_features(clusters)
-    _, parameterized = trichart.base_complex(features)
-    patches, _ = trichart.trace_paths(parameterized)
-    return trichart.geometry_images(patches, resampled_arrays=["MeanCurvature"])
+def atlas(bunny_stages):
+    return bunny_stages["atlas"]
 
 
 def scene(atlas):
