@@ -1,4 +1,4 @@
-# The VTK layer: filter modules, Python wrapping, ParaView plugin, app, VTK tests, benchmarks.
+# The VTK layer: filter modules, Python wrapping, ParaView plugin, app, VTK tests.
 # Any VTK 9.1+ works; the README's set-up points VTK_DIR at ParaView 5.11's VTK so that one
 # build serves Python, pvpython, the plugin and the app.
 
@@ -114,4 +114,3 @@ if (BUILD_TESTING)
     endif ()
   endif ()
 endif ()
-add_subdirectory(bench)

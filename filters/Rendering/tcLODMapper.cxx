@@ -48,6 +48,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -388,15 +389,18 @@ bool tcLODMapper::UpdateAtlas()
     return false;
   }
   const int32_t finest = in.atlas.maxLevel();
-  if (finest > 15)
+  try
   {
-    // The draw list packs four levels in 4 bits each.
+    // Refuses levels above 15 (the draw list packs levels in 4 bits) and malformed errors.
+    in.charts = tc::LodCharts::fromAtlas(in.atlas);
+  }
+  catch (const std::exception& e)
+  {
     in.valid = false;
-    vtkErrorMacro("Cannot draw the atlas: its finest level is "
-      << finest << "; tcLODMapper draws levels up to 15.");
+    in.list = tc::LodDrawList();
+    vtkErrorMacro("Cannot draw the atlas: " << e.what() << ".");
     return false;
   }
-  in.charts = tc::LodCharts::fromAtlas(in.atlas);
 
   // The grids of every level, one vertex buffer.
   vtkNew<vtkPoints> points;
@@ -619,8 +623,8 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
     options.errorPixels = this->ErrorTarget;
     options.cull = this->Culling;
     tc::LodView view;
-    view.width = width;
-    view.height = height;
+    view.width = std::max(1, width);
+    view.height = std::max(1, height);
     for (int i = 0; i < instances; ++i)
     {
       vtkMatrix4x4::Multiply4x4(modelToClip->GetData(),
@@ -628,6 +632,7 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
       tc::selectLevels(in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
     }
   }
+  // The levels above are clamped to each chart's range, which is all buildDrawList checks.
   tc::buildDrawList(in.charts, in.levels.data(), instances, in.list);
   in.drawList.Upload(in.list.entries, true);
   in.haveSelection = true;
