@@ -6,6 +6,7 @@
 #include "tc/atlas.h"
 #include "tc/geometry_image_mesh.h"
 #include "tc/lod_selection.h"
+#include "tc/parallel.h"
 
 #include "tcGeometryImageBeginVS.h"
 #include "tcGeometryImageColorDecFS.h"
@@ -622,15 +623,21 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
     options.bias = this->LODBias;
     options.errorPixels = this->ErrorTarget;
     options.cull = this->Culling;
-    tc::LodView view;
-    view.width = std::max(1, width);
-    view.height = std::max(1, height);
-    for (int i = 0; i < instances; ++i)
-    {
-      vtkMatrix4x4::Multiply4x4(modelToClip->GetData(),
-        in.instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
-      tc::selectLevels(in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
-    }
+    const double* toClip = modelToClip->GetData();
+    // Instances in parallel: a crowd has many of them, each with a few hundred charts.
+    tc::parallel_for(
+      instances,
+      [&](int64_t i)
+      {
+        tc::LodView view;
+        view.width = std::max(1, width);
+        view.height = std::max(1, height);
+        vtkMatrix4x4::Multiply4x4(
+          toClip, in.instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
+        tc::selectLevels(
+          in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
+      },
+      tc::Progress(), 1);
   }
   // The levels above are clamped to each chart's range, which is all buildDrawList checks.
   tc::buildDrawList(in.charts, in.levels.data(), instances, in.list);
