@@ -28,7 +28,8 @@ int main(int argc, char* argv[])
   parser.addHelpOption();
   parser.addPositionalArgument("files",
     "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk) or atlas (.exr) files, opened in turn; "
-    "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas).",
+    "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas or "
+    "lod).",
     "[files...]");
   QCommandLineOption screenshot("screenshot",
     "Run up to the stage, save a PNG of the window and exit. With several stages the file name "
@@ -46,11 +47,15 @@ int main(int argc, char* argv[])
     "Write the atlas of the last file (built, or the one opened) as .exr, as File > Save atlas "
     "does.",
     "file");
+  QCommandLineOption instances("instances",
+    "Instances of the lod stage's crowd, on a square grid of the ground (1 to 2500, default 1).",
+    "n", "1");
   parser.addOption(screenshot);
   parser.addOption(stage);
   parser.addOption(array);
   parser.addOption(level);
   parser.addOption(saveAtlas);
+  parser.addOption(instances);
   parser.process(app);
 
   std::vector<int> stages;
@@ -91,8 +96,18 @@ int main(int argc, char* argv[])
     return 2;
   }
 
+  bool instancesOk = false;
+  const int instancesValue = parser.value(instances).toInt(&instancesOk);
+  if (!instancesOk || instancesValue < 1 || instancesValue > 2500)
+  {
+    std::cerr << "trichart-viewer: --instances needs an integer from 1 to 2500, not '"
+              << parser.value(instances).toStdString() << "'\n";
+    return 2;
+  }
+
   tcViewerWindow window;
   window.SetReconstructionLevel(levelValue);
+  window.SetInstances(instancesValue);
   const bool batch = parser.isSet(screenshot) || parser.isSet(saveAtlas);
   window.SetBatchMode(batch);
   if (batch)

@@ -9,6 +9,7 @@
 #include "tcFeatureRefinement.h"
 #include "tcGeometryImageMesh.h"
 #include "tcGeometryImages.h"
+#include "tcLODMapper.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
 #include "tcPathTracing.h"
@@ -52,6 +53,7 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
 #include <vtkExtractEdges.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -62,6 +64,7 @@
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkLinearSubdivisionFilter.h>
 #include <vtkLookupTable.h>
+#include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -86,10 +89,10 @@
 namespace
 {
 const char* const kStageNames[] = { "input", "preparation", "curvature", "clusters", "features",
-  "base", "patches", "atlas", "reconstruction" };
+  "base", "patches", "atlas", "reconstruction", "lod" };
 const char* const kStageLabels[] = { "Input mesh", "Preparation", "Curvature", "Spectral clusters",
   "Feature lines and corners", "Base complex (MAPS)", "Triangle patches and paths",
-  "Geometry-image atlas", "Reconstruction and its error" };
+  "Geometry-image atlas", "Reconstruction and its error", "Level of detail (GPU)" };
 static_assert(
   sizeof(kStageNames) / sizeof(*kStageNames) == tcViewerWindow::StageCount, "one name per stage");
 static_assert(sizeof(kStageLabels) / sizeof(*kStageLabels) == tcViewerWindow::StageCount,
@@ -180,11 +183,12 @@ vtkAlgorithm* tcViewerWindow::StageAlgorithm(int stage) const
 {
   // The filter whose update runs the stage: the atlas stage shows the atlas and the mesh
   // rebuilt from it, the reconstruction its distance to the prepared mesh (none for an atlas
-  // file, which has no input mesh).
+  // file, which has no input mesh), the LOD stage the atlas itself.
   vtkAlgorithm* reconstruction = this->AtlasFile ? static_cast<vtkAlgorithm*>(this->Reconstruction)
                                                  : static_cast<vtkAlgorithm*>(this->Distance);
   vtkAlgorithm* algorithms[] = { this->Reader, this->Preparation, this->Curvature, this->Clustering,
-    this->Refinement, this->BaseComplex, this->PathTracing, this->AtlasMesh, reconstruction };
+    this->Refinement, this->BaseComplex, this->PathTracing, this->AtlasMesh, reconstruction,
+    this->AtlasSource() };
   static_assert(sizeof(algorithms) / sizeof(*algorithms) == StageCount, "one filter per stage");
   return algorithms[stage];
 }
@@ -296,6 +300,27 @@ void tcViewerWindow::BuildUi()
   this->AtlasCaption->GetTextProperty()->SetColor(0.9, 0.9, 0.9);
   this->AtlasCaption->SetPosition(10, 10);
   this->AtlasRenderer->AddActor2D(this->AtlasCaption);
+
+  // The LOD stage: the atlas through tcLODMapper, its statistics in a second layer drawn after
+  // the 3-D one (see the class comment). The overlay takes no interaction: the 3-D view does.
+  this->LODActor->SetMapper(this->LODMapper);
+  this->LODActor->GetProperty()->SetColor(0.85, 0.85, 0.85);
+  this->LODActor->VisibilityOff();
+  this->Renderer->AddActor(this->LODActor);
+  this->RenderWindow->SetNumberOfLayers(2);
+  this->OverlayRenderer->SetLayer(1);
+  this->OverlayRenderer->InteractiveOff();
+  this->LODStatistics->GetTextProperty()->SetFontSize(14);
+  this->LODStatistics->GetTextProperty()->SetFontFamilyToCourier();
+  this->LODStatistics->GetTextProperty()->SetColor(1.0, 1.0, 1.0);
+  this->LODStatistics->GetTextProperty()->SetBackgroundColor(0.0, 0.0, 0.0);
+  this->LODStatistics->GetTextProperty()->SetBackgroundOpacity(0.5);
+  this->LODStatistics->GetTextProperty()->SetVerticalJustificationToTop();
+  this->LODStatistics->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  this->LODStatistics->SetPosition(0.01, 0.985);
+  this->OverlayRenderer->AddActor2D(this->LODStatistics);
+  this->Renderer->AddObserver(vtkCommand::EndEvent, this, &tcViewerWindow::OnRendered);
+
   vtkNew<tcViewerInteractorStyle> style;
   style->Flat = this->AtlasRenderer;
   this->View->interactor()->SetInteractorStyle(style);
@@ -330,6 +355,7 @@ void tcViewerWindow::BuildUi()
     panel));
   this->Panels->addWidget(this->BuildGeometryImagesPanel());
   this->Panels->addWidget(this->BuildReconstructionPanel());
+  this->Panels->addWidget(this->BuildLODPanel());
   layout->addWidget(this->Panels);
   auto* apply = new QPushButton("Apply", panel);
   layout->addWidget(apply);
@@ -359,6 +385,9 @@ void tcViewerWindow::BuildUi()
   this->Info->setTextInteractionFlags(Qt::TextSelectableByMouse);
   this->Info->setAutoFillBackground(false);
   scroll->setWidget(this->Info);
+  // Three lines at least, not the taller default of a scroll area: with every stage listed and
+  // the tallest parameter panel shown, the window keeps its size.
+  scroll->setMinimumHeight(3 * this->Info->fontMetrics().lineSpacing());
   layout->addWidget(scroll, 1);
   dock->setWidget(panel);
   dock->setMinimumWidth(260);
@@ -455,6 +484,12 @@ void tcViewerWindow::BuildUi()
   connect(exportStage, &QAction::triggered, this,
     [this]()
     {
+      if (this->CurrentStage == LODStage)
+      {
+        this->ReportError("The LOD stage draws the atlas on the GPU and builds no mesh: export "
+                          "the reconstruction stage, or save the atlas.");
+        return;
+      }
       if (!this->Shown)
       {
         return;
@@ -680,6 +715,106 @@ QWidget* tcViewerWindow::BuildReconstructionPanel()
   return w;
 }
 
+QWidget* tcViewerWindow::BuildLODPanel()
+{
+  // View settings, not pipeline parameters: each change redraws at once, no Apply. The viewer
+  // opens on the error-target rule and colours by level: the stage is there to show which level
+  // each chart takes, and the atlases the pipeline writes carry measured errors.
+  auto* w = new QWidget(this);
+  auto* form = new QFormLayout(w);
+  this->LODBias = new QDoubleSpinBox(w);
+  this->LODBias->setRange(-4.0, 4.0);
+  this->LODBias->setSingleStep(0.5);
+  this->LODBias->setDecimals(1);
+  this->LODBias->setValue(0.0);
+  this->LODBias->setToolTip("Levels added to every chosen level (positive: finer)");
+  form->addRow("LOD bias", this->LODBias);
+  this->ErrorTarget = new QDoubleSpinBox(w);
+  this->ErrorTarget->setRange(0.0, 64.0);
+  this->ErrorTarget->setSingleStep(0.5);
+  this->ErrorTarget->setDecimals(1);
+  this->ErrorTarget->setSuffix(" px");
+  this->ErrorTarget->setSpecialValueText("0 (area, eq. 7)");
+  this->ErrorTarget->setValue(1.0);
+  this->ErrorTarget->setToolTip("Each chart takes the coarsest level whose measured error "
+                                "projects to at most this many pixels; 0 chooses by projected "
+                                "area (eq. 7 of Feng et al.)");
+  form->addRow("Error target", this->ErrorTarget);
+  this->FreezeLOD = new QCheckBox(w);
+  this->FreezeLOD->setToolTip("Keep the levels and culling of the last frame while the camera "
+                              "moves, to fly around a frozen selection");
+  form->addRow("Freeze LOD", this->FreezeLOD);
+  this->LODColor = new QComboBox(w);
+  // In tcLODMapper::ColorModes order.
+  this->LODColor->addItems({ "actor", "chart", "level" });
+  this->LODColor->setCurrentIndex(tcLODMapper::ColorByLevel);
+  form->addRow("Colour by", this->LODColor);
+  this->Wireframe = new QCheckBox(w);
+  form->addRow("Wireframe", this->Wireframe);
+  this->Instances = new QSpinBox(w);
+  this->Instances->setRange(1, 2500);
+  this->Instances->setValue(1);
+  this->Instances->setToolTip("A crowd: this many copies on a square grid of the ground, each "
+                              "turned by its own angle about the vertical (+Y) axis");
+  form->addRow("Crowd instances", this->Instances);
+  auto* reset = new QPushButton("Reset camera", w);
+  reset->setToolTip("Look at the whole crowd from the front and a little to the side, 35 "
+                    "degrees above the ground");
+  form->addRow(reset);
+
+  this->LODMapper->SetLODBias(this->LODBias->value());
+  this->LODMapper->SetErrorTarget(this->ErrorTarget->value());
+  this->LODMapper->SetColorMode(this->LODColor->currentIndex());
+  connect(this->LODBias, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this,
+    [this](double bias)
+    {
+      this->LODMapper->SetLODBias(bias);
+      this->RenderLOD();
+    });
+  connect(this->ErrorTarget, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this,
+    [this](double pixels)
+    {
+      this->LODMapper->SetErrorTarget(pixels);
+      this->RenderLOD();
+    });
+  connect(this->FreezeLOD, &QCheckBox::toggled, this,
+    [this](bool on)
+    {
+      this->LODMapper->SetFreezeLOD(on);
+      this->RenderLOD();
+    });
+  connect(this->LODColor, QOverload<int>::of(&QComboBox::currentIndexChanged), this,
+    [this](int mode)
+    {
+      this->LODMapper->SetColorMode(mode);
+      this->RenderLOD();
+    });
+  connect(this->Wireframe, &QCheckBox::toggled, this,
+    [this](bool on)
+    {
+      this->LODActor->GetProperty()->SetRepresentation(on ? VTK_WIREFRAME : VTK_SURFACE);
+      this->RenderLOD();
+    });
+  connect(this->Instances, QOverload<int>::of(&QSpinBox::valueChanged), this,
+    [this](int)
+    {
+      // A new crowd is framed whole: the old view would show a corner of a larger one.
+      if (this->CurrentStage == LODStage && this->LODActor->GetVisibility())
+      {
+        this->UpdateCrowd();
+        this->FrameCrowd();
+        this->RenderLOD();
+      }
+    });
+  connect(reset, &QPushButton::clicked, this,
+    [this]()
+    {
+      this->ResetCamera();
+      this->RenderLOD();
+    });
+  return w;
+}
+
 void tcViewerWindow::PushParameters()
 {
   // Setting an unchanged value does not modify a filter, so only what changed re-runs.
@@ -718,8 +853,9 @@ bool tcViewerWindow::OpenFile(const QString& path, int stage)
   if (this->AtlasFile)
   {
     this->AtlasReader->SetFileName(path.toStdString().c_str());
-    // An atlas has no input mesh: it opens on its reconstruction unless the atlas is asked for.
-    stage = stage == AtlasStage ? AtlasStage : ReconstructionStage;
+    // An atlas has no input mesh: it opens on its reconstruction unless the atlas or its LOD
+    // view is asked for.
+    stage = stage == AtlasStage || stage == LODStage ? stage : ReconstructionStage;
   }
   else
   {
@@ -810,17 +946,30 @@ bool tcViewerWindow::ShowStage(int stage)
     this->CornerActor->VisibilityOff();
     this->Legend->VisibilityOff();
     this->HideAtlasPicture();
+    this->HideLOD();
     this->HasLines = false;
     this->Info->setText("<font color='#b00'>" + this->Error.toHtmlEscaped() + "</font>");
     this->RenderWindow->Render();
     return false;
   }
+  const bool entering = this->CurrentStage != stage;
   this->CurrentStage = stage;
   {
     const QSignalBlocker block(this->Stages);
     this->Stages->setCurrentRow(stage);
     this->Panels->setCurrentIndex(stage);
   }
+  // The display options act on the rebuilt surfaces; the LOD stage has its own in its panel.
+  for (QWidget* w : { static_cast<QWidget*>(this->ColorBy), static_cast<QWidget*>(this->ShowLines),
+         static_cast<QWidget*>(this->ShowCorners), static_cast<QWidget*>(this->ShowEdges) })
+  {
+    w->setEnabled(stage != LODStage);
+  }
+  if (stage == LODStage)
+  {
+    return this->ShowLOD(entering);
+  }
+  this->HideLOD();
   vtkAlgorithm* algorithm = this->StageAlgorithm(stage);
   auto* surface = vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0));
   // Crest lines, cluster boundaries, feature lines and paths are each stage's port 1; the base
@@ -877,7 +1026,7 @@ bool tcViewerWindow::ShowStage(int stage)
     info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
   }
   const char* const lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines",
-    "base edges", "paths", "", "" };
+    "base edges", "paths", "", "", "" };
   static_assert(sizeof(lineNames) / sizeof(*lineNames) == StageCount, "one line name per stage");
   if (lines && *lineNames[stage])
   {
@@ -994,6 +1143,185 @@ void tcViewerWindow::HideAtlasPicture()
     this->RenderWindow->RemoveRenderer(this->AtlasRenderer);
     this->Renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
   }
+}
+
+void tcViewerWindow::SetInstances(int instances)
+{
+  this->Instances->setValue(instances);
+}
+
+bool tcViewerWindow::ShowLOD(bool entering)
+{
+  this->SurfaceActor->VisibilityOff();
+  this->LineActor->VisibilityOff();
+  this->CornerActor->VisibilityOff();
+  this->Legend->VisibilityOff();
+  this->HideAtlasPicture();
+  this->HasLines = false;
+  this->Shown = nullptr;
+
+  // The mapper draws a copy, not the pipeline's output: a render during a later pipeline run
+  // (progress events repaint the window) must not update the pipeline from inside it.
+  vtkDataObject* atlas = this->AtlasSource()->GetOutputDataObject(0);
+  if (atlas != this->LODAtlasSource || atlas->GetMTime() != this->LODAtlasTime)
+  {
+    auto copy = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+    copy->DeepCopy(atlas);
+    this->LODMapper->SetInputData(copy);
+    this->LODAtlasSource = atlas;
+    this->LODAtlasTime = atlas->GetMTime();
+    // The crowd is laid out from the bounds of one instance.
+    this->LODMapper->SetInstanceMatrices(nullptr);
+    this->LODMapper->GetBounds(this->LODBounds);
+  }
+  this->UpdateCrowd();
+  this->LODActor->VisibilityOn();
+  if (!this->RenderWindow->HasRenderer(this->OverlayRenderer))
+  {
+    this->RenderWindow->AddRenderer(this->OverlayRenderer);
+  }
+  if (this->Renderer->GetActiveCamera() != this->LODCamera)
+  {
+    this->StageCamera = this->Renderer->GetActiveCamera();
+    this->Renderer->SetActiveCamera(this->LODCamera);
+  }
+  if (entering)
+  {
+    this->FrameCrowd();
+  }
+  // The statistics come from the frame: the render fills the info text (OnRendered). The
+  // panel just shown may resize the 3-D view; the levels depend on its size in pixels, so the
+  // layout settles first.
+  this->Info->setText(QString("<b>%1</b>").arg(kStageLabels[LODStage]));
+  QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
+  this->RenderWindow->Render();
+  if (this->Batch)
+  {
+    std::cout << "trichart-viewer: " << this->InfoText().simplified().toStdString() << "\n";
+    // The timings vary from run to run, so the pictures show "-"; they are printed here.
+    std::cout << "trichart-viewer: lod timing: LOD selection "
+              << 1e3 * this->LODMapper->GetSelectionSeconds() << " ms, 3-D view "
+              << 1e3 * this->Renderer->GetLastRenderTimeInSeconds() << " ms\n";
+  }
+  return true;
+}
+
+void tcViewerWindow::HideLOD()
+{
+  this->LODActor->VisibilityOff();
+  if (this->RenderWindow->HasRenderer(this->OverlayRenderer))
+  {
+    this->RenderWindow->RemoveRenderer(this->OverlayRenderer);
+  }
+  if (this->StageCamera && this->Renderer->GetActiveCamera() == this->LODCamera)
+  {
+    this->Renderer->SetActiveCamera(this->StageCamera);
+  }
+}
+
+void tcViewerWindow::UpdateCrowd()
+{
+  const int n = this->Instances->value();
+  const double* b = this->LODBounds;
+  if (!vtkMath::AreBoundsInitialized(b))
+  {
+    return;
+  }
+  // A square grid on the plane through the bottom of the atlas's box (+Y up), 1.6 times its
+  // largest side apart: a copy turned about the vertical axis keeps within its diagonal, less
+  // than that. Each copy turns about its own vertical axis by the golden angle times its index,
+  // so that no two neighbours look the same way; the first one is not turned.
+  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  const double spacing = 1.6 * size;
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int rows = (n + columns - 1) / columns;
+  const double cx = 0.5 * (b[0] + b[1]), cz = 0.5 * (b[4] + b[5]);
+  const double goldenAngle = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
+  vtkNew<vtkDoubleArray> matrices;
+  matrices->SetNumberOfComponents(16);
+  matrices->SetNumberOfTuples(n);
+  for (int k = 0; k < n; ++k)
+  {
+    const double x = cx + (k % columns - 0.5 * (columns - 1)) * spacing;
+    const double z = cz + (k / columns - 0.5 * (rows - 1)) * spacing;
+    const double c = std::cos(k * goldenAngle), s = std::sin(k * goldenAngle);
+    // Row-major: move the box's centre to the origin, turn about +Y, move it to its grid cell.
+    const double m[16] = { c, 0, s, x - (c * cx + s * cz), 0, 1, 0, 0, -s, 0, c,
+      z - (-s * cx + c * cz), 0, 0, 0, 1 };
+    matrices->SetTuple(k, m);
+  }
+  this->LODMapper->SetInstanceMatrices(matrices);
+}
+
+void tcViewerWindow::FrameCrowd()
+{
+  // From the front (+Z), 35 degrees up and 30 to the side: the rows of a crowd stand out behind
+  // one another instead of hiding each other.
+  vtkCamera* camera = this->LODCamera;
+  const double up = vtkMath::RadiansFromDegrees(35.0), side = vtkMath::RadiansFromDegrees(30.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetPosition(std::cos(up) * std::sin(side), std::sin(up), std::cos(up) * std::cos(side));
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  this->Renderer->ResetCamera();
+}
+
+void tcViewerWindow::RenderLOD()
+{
+  if (this->CurrentStage == LODStage && this->LODActor->GetVisibility())
+  {
+    this->RenderWindow->Render();
+  }
+}
+
+void tcViewerWindow::OnRendered(vtkObject*, unsigned long, void*)
+{
+  if (!this->LODActor->GetVisibility())
+  {
+    return;
+  }
+  // The 3-D layer is drawn and the overlay layer is next: these are this frame's figures, except
+  // the frame rate, which is the last whole render's (this one is not finished). Timings vary
+  // from run to run: batch pictures show "-" in their place (ShowLOD prints them).
+  const tcLODMapper* m = this->LODMapper;
+  const double seconds = this->Renderer->GetLastRenderTimeInSeconds();
+  const QString fps =
+    this->Batch || seconds <= 0 ? QString("-") : QString::number(1.0 / seconds, 'f', 1);
+  const QString selection =
+    this->Batch ? QString("-") : QString::number(1e3 * m->GetSelectionSeconds(), 'f', 2);
+  int finest = 0;
+  for (int level = 0; level < 16; ++level)
+  {
+    finest = m->GetChartsAtLevel(level) > 0 ? level : finest;
+  }
+  QStringList perLevel;
+  for (int level = 0; level <= finest; ++level)
+  {
+    perLevel << QString("L%1 %2").arg(level).arg(m->GetChartsAtLevel(level));
+  }
+  const int instances = m->GetNumberOfInstances();
+  this->LODStatistics->SetInput(QString("fps %1\n%2 triangles drawn\n%3 charts drawn\n%4\n"
+                                        "LOD selection %5 ms\n%6 instance%7")
+                                  .arg(fps)
+                                  .arg(m->GetTrianglesDrawn())
+                                  .arg(m->GetChartsDrawn())
+                                  .arg(perLevel.join(" | "))
+                                  .arg(selection)
+                                  .arg(instances)
+                                  .arg(instances == 1 ? "" : "s")
+                                  .toStdString()
+                                  .c_str());
+  this->Info->setText(QString("<b>%1</b><br>%2 charts x %3 instance%4<br>fps %5<br>%6 triangles "
+                              "drawn<br>%7 charts drawn<br>charts per level: %8<br>LOD "
+                              "selection %9 ms")
+                        .arg(kStageLabels[LODStage])
+                        .arg(m->GetNumberOfCharts())
+                        .arg(instances)
+                        .arg(instances == 1 ? "" : "s")
+                        .arg(fps)
+                        .arg(m->GetTrianglesDrawn())
+                        .arg(m->GetChartsDrawn())
+                        .arg(perLevel.join(" | "))
+                        .arg(selection));
 }
 
 bool tcViewerWindow::SaveAtlas(const QString& path)
@@ -1163,11 +1491,16 @@ void tcViewerWindow::SetColorArray(const QString& name)
   this->SurfaceMapper->UseLookupTableScalarRangeOn();
   this->Legend->SetLookupTable(lut);
   this->Legend->SetTitle(arrayName.toStdString().c_str());
-  this->Legend->SetVisibility(!labels);
+  this->Legend->SetVisibility(!labels && this->CurrentStage != LODStage);
 }
 
 void tcViewerWindow::ResetCamera()
 {
+  if (this->CurrentStage == LODStage && this->LODActor->GetVisibility())
+  {
+    this->FrameCrowd();
+    return;
+  }
   this->Renderer->ResetCamera();
 }
 

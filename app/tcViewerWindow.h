@@ -24,6 +24,13 @@
  * atlas as a flat picture (normals as colours) on the left, the mesh rebuilt from it in 3-D on
  * the right. One window keeps a single screenshot, camera and interactor; the left viewport
  * pans and zooms but does not rotate.
+ *
+ * The LOD stage draws the atlas itself (not a mesh rebuilt from it) with tcLODMapper: each
+ * chart at the level the view asks for, optionally as a crowd of instances on a ground grid.
+ * It has its own camera, so flying around the crowd leaves the other stages' view as it was,
+ * and a statistics overlay in a second renderer layer, filled after the 3-D layer has drawn
+ * (the mapper chooses its levels while it draws) and before the overlay layer draws, so the
+ * figures shown are those of the frame they are drawn over.
  */
 #ifndef tcViewerWindow_h
 #define tcViewerWindow_h
@@ -33,6 +40,7 @@
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+#include <vtkType.h>
 
 #include <string>
 #include <vector>
@@ -55,6 +63,7 @@ class tcCurvature;
 class tcFeatureRefinement;
 class tcGeometryImageMesh;
 class tcGeometryImages;
+class tcLODMapper;
 class tcMeshPreparation;
 class tcMeshReader;
 class tcPathTracing;
@@ -62,6 +71,8 @@ class tcSpectralClustering;
 class tcSurfaceDistance;
 class vtkActor;
 class vtkAlgorithm;
+class vtkCamera;
+class vtkDataObject;
 class vtkExtractEdges;
 class vtkGenericOpenGLRenderWindow;
 class vtkImageActor;
@@ -91,6 +102,7 @@ public:
     PatchesStage,
     AtlasStage,
     ReconstructionStage,
+    LODStage,
     StageCount
   };
 
@@ -98,7 +110,7 @@ public:
   ~tcViewerWindow() override;
 
   /// Stage from its command-line name ("input", "preparation", "curvature", "clusters",
-  /// "features", "base", "patches", "atlas", "reconstruction"); -1 if unknown.
+  /// "features", "base", "patches", "atlas", "reconstruction", "lod"); -1 if unknown.
   static int StageFromName(const QString& name);
 
   /// The command-line names of all stages, in pipeline order.
@@ -107,8 +119,8 @@ public:
   /// True if `path` is opened as an atlas (.exr, or a file tcAtlasReader recognises).
   static bool IsAtlasFile(const QString& path);
 
-  /// Opens a mesh and shows `stage`, or an atlas and shows its reconstruction (or the atlas
-  /// stage when that is `stage`); false (with the error shown) on failure.
+  /// Opens a mesh and shows `stage`, or an atlas and shows its reconstruction (or the atlas or
+  /// LOD stage when that is `stage`); false (with the error shown) on failure.
   bool OpenFile(const QString& path, int stage = CurvatureStage);
 
   /// Runs the pipeline up to `stage` and shows its output; false on error, cancel or a stage
@@ -123,10 +135,15 @@ public:
   /// stage shown uses it.
   void SetReconstructionLevel(int level);
 
+  /// Sets the number of instances of the LOD stage's crowd (1 to 2500); the crowd is framed
+  /// anew when the LOD stage is shown.
+  void SetInstances(int instances);
+
   /// Colours the surface by this array of the shown output ("" for a plain surface).
   void SetColorArray(const QString& name);
 
-  /// Fits the camera of the 3-D view to the shown surface.
+  /// Fits the camera of the 3-D view to the shown surface; in the LOD stage, looks at the whole
+  /// crowd from the front (+Z) and 30 degrees to the side, 35 degrees above its ground plane.
   void ResetCamera();
 
   /// Renders and saves the whole window as PNG.
@@ -154,6 +171,7 @@ private:
   QWidget* BuildBaseComplexPanel();
   QWidget* BuildGeometryImagesPanel();
   QWidget* BuildReconstructionPanel();
+  QWidget* BuildLODPanel();
   std::vector<vtkAlgorithm*> Filters() const;
   vtkAlgorithm* StageAlgorithm(int stage) const;
   vtkAlgorithm* AtlasSource() const;
@@ -162,6 +180,12 @@ private:
   void PushParameters();
   bool Run(vtkAlgorithm* algorithm, int port = 0);
   void Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyData* corners);
+  bool ShowLOD(bool entering);
+  void HideLOD();
+  void UpdateCrowd();
+  void FrameCrowd();
+  void RenderLOD();
+  void OnRendered(vtkObject*, unsigned long, void*);
   void ShowAtlasPicture(vtkMultiBlockDataSet* atlas);
   void HideAtlasPicture();
   void FillArrayChoices(vtkPolyData* surface);
@@ -200,6 +224,15 @@ private:
   vtkNew<vtkRenderer> AtlasRenderer;
   vtkNew<vtkImageActor> AtlasPicture;
   vtkNew<vtkTextActor> AtlasCaption;
+  vtkNew<tcLODMapper> LODMapper;
+  vtkNew<vtkActor> LODActor;
+  vtkNew<vtkCamera> LODCamera;
+  vtkSmartPointer<vtkCamera> StageCamera; ///< the other stages' camera, while the LOD stage shows
+  vtkNew<vtkRenderer> OverlayRenderer;    ///< layer 1 over the 3-D view: the LOD statistics
+  vtkNew<vtkTextActor> LODStatistics;
+  vtkDataObject* LODAtlasSource = nullptr; ///< the atlas output the LOD mapper's copy was made of
+  vtkMTimeType LODAtlasTime = 0;           ///< and its modified time then
+  double LODBounds[6] = { 0, -1, 0, -1, 0, -1 }; ///< the atlas's bounds, one instance
   vtkSmartPointer<vtkPolyData> Shown;
 
   QVTKOpenGLNativeWidget* View = nullptr;
@@ -239,6 +272,12 @@ private:
   QSpinBox* MaxLevel = nullptr;
   QDoubleSpinBox* CurvatureWeight = nullptr;
   QSpinBox* Level = nullptr;
+  QDoubleSpinBox* LODBias = nullptr;
+  QDoubleSpinBox* ErrorTarget = nullptr;
+  QCheckBox* FreezeLOD = nullptr;
+  QComboBox* LODColor = nullptr;
+  QCheckBox* Wireframe = nullptr;
+  QSpinBox* Instances = nullptr;
 
   QString FileName;
   QString Error;

@@ -1,7 +1,8 @@
 """trichart-viewer in batch mode: one picture per stage compared with its baseline, the
-reconstruction's error figures, an atlas file written by the viewer opened on its
-reconstruction, and bad files (a missing or corrupt mesh or atlas, an atlas saved where it cannot
-go) reported on stderr while the window stays usable (no crash)."""
+reconstruction's error figures, the LOD stage's statistics (one bunny and a crowd), an atlas file
+written by the viewer opened on its reconstruction and its LOD view, and bad files (a missing or
+corrupt mesh or atlas, an atlas saved where it cannot go) reported on stderr while the window
+stays usable (no crash)."""
 import os
 import pathlib
 import re
@@ -15,7 +16,8 @@ VIEWER = os.environ["TRICHART_VIEWER"]
 DATA = pathlib.Path(os.environ["TRICHART_TESTING_DATA"])
 BUNNY = DATA / "meshes" / "bunny_npm.off"
 STAGES = ["input", "preparation", "curvature", "clusters", "features", "base", "patches", "atlas",
-          "reconstruction"]
+          "reconstruction", "lod"]
+CROWD = 16
 
 
 def viewer(*args):
@@ -39,6 +41,22 @@ def figures(text):
     return {key: match.groups() for key, match in found.items() if match}
 
 
+def lod_figures(stdout):
+    """The numbers of the LOD stage's summary and the timings printed beside it."""
+    text = summary(stdout, "Level of detail")
+    found = {"charts": int(re.search(r"(\d+) charts x", text).group(1)),
+             "instances": int(re.search(r"x (\d+) instances?", text).group(1)),
+             "fps": re.search(r"fps (\S+)", text).group(1),
+             "triangles": int(re.search(r"(\d+) triangles drawn", text).group(1)),
+             "drawn": int(re.search(r"(\d+) charts drawn", text).group(1)),
+             "levels": {int(level): int(count)
+                        for level, count in re.findall(r"L(\d+) (\d+)", text)},
+             "selection": re.search(r"LOD selection (\S+) ms", text).group(1)}
+    timing = re.search(r"lod timing: LOD selection (\S+) ms", stdout)
+    found["selection_ms"] = float(timing.group(1)) if timing else None
+    return found
+
+
 @pytest.fixture(scope="module")
 def bunny(tmp_path_factory):
     """One viewer run over the bunny: every stage's picture (each framed as if shown alone) and
@@ -48,6 +66,14 @@ def bunny(tmp_path_factory):
     r = viewer(BUNNY, "--stage", ",".join(STAGES), "--screenshot", folder / "{stage}.png",
                "--save-atlas", atlas)
     return {"run": r, "folder": folder, "atlas": atlas}
+
+
+@pytest.fixture(scope="module")
+def crowd(tmp_path_factory):
+    """The LOD stage of the bunny as a crowd of CROWD instances."""
+    shot = tmp_path_factory.mktemp("crowd") / "crowd.png"
+    return {"run": viewer(BUNNY, "--stage", "lod", "--instances", CROWD, "--screenshot", shot),
+            "shot": shot}
 
 
 @pytest.mark.parametrize("stage", STAGES)
@@ -178,3 +204,66 @@ def test_unknown_stage_is_refused(stage):
 def test_several_stages_need_a_file_name_pattern():
     r = viewer(DATA / "meshes" / "cube.off", "--stage", "input,base", "--screenshot", "x.png")
     assert r.returncode == 2 and "{stage}" in r.stderr
+
+
+def test_lod_statistics_describe_the_frame(bunny):
+    lod = lod_figures(bunny["run"].stdout)
+    print("bunny lod:", lod)
+    atlas = summary(bunny["run"].stdout, "Geometry-image atlas")
+    assert lod["charts"] == int(re.search(r"(\d+) charts", atlas).group(1))
+    # Framed whole, every chart is in view and drawn once.
+    assert lod["instances"] == 1 and lod["drawn"] == lod["charts"]
+    assert sum(lod["levels"].values()) == lod["drawn"]
+    # A chart at level n is a grid of 4^n triangles.
+    assert lod["triangles"] == sum(count * 4 ** level for level, count in lod["levels"].items())
+    # Timings vary from run to run: the picture shows "-", stdout the figure.
+    assert lod["fps"] == "-" and lod["selection"] == "-"
+    assert lod["selection_ms"] is not None and lod["selection_ms"] > 0
+
+
+def test_lod_crowd_screenshot_matches_baseline(crowd):
+    assert crowd["run"].returncode == 0, crowd["run"].stderr
+    ok, detail = compare_with_baseline(crowd["shot"],
+                                       DATA / "baselines" / "TestViewer_lod_crowd.png")
+    assert ok, detail
+
+
+def test_lod_crowd_draws_every_instance_coarser(bunny, crowd):
+    one, many = lod_figures(bunny["run"].stdout), lod_figures(crowd["run"].stdout)
+    print("bunny lod crowd:", many)
+    assert many["instances"] == CROWD and many["charts"] == one["charts"]
+    assert many["drawn"] == CROWD * one["charts"]
+    assert sum(many["levels"].values()) == many["drawn"]
+    assert many["triangles"] == sum(count * 4 ** level for level, count in many["levels"].items())
+    # More triangles than one bunny, but fewer than CROWD bunnies at one bunny's levels: framed
+    # whole, the crowd is farther away and its charts take coarser levels.
+    assert one["triangles"] < many["triangles"] < CROWD * one["triangles"]
+
+
+def test_atlas_file_shows_the_same_lod_view(bunny, crowd, tmp_path):
+    for run, instances in ((bunny["run"], 1), (crowd["run"], CROWD)):
+        r = viewer(bunny["atlas"], "--stage", "lod", "--instances", instances, "--screenshot",
+                   tmp_path / f"lod{instances}.png")
+        assert r.returncode == 0, r.stderr
+        # The same atlas seen the same way: the same levels, chart for chart.
+        read, built = lod_figures(r.stdout), lod_figures(run.stdout)
+        for key in ("charts", "instances", "triangles", "drawn", "levels"):
+            assert read[key] == built[key], key
+
+
+def test_lod_stage_leaves_the_other_stages_camera_alone(bunny, tmp_path):
+    # The LOD stage flies its own camera: the reconstruction shown after it is framed as alone.
+    r = viewer(bunny["atlas"], "--stage", "lod,reconstruction", "--instances", CROWD,
+               "--screenshot", tmp_path / "{stage}.png")
+    assert r.returncode == 0, r.stderr
+    ok, detail = compare_with_baseline(
+        tmp_path / "reconstruction.png",
+        DATA / "baselines" / "TestViewer_reconstruction_atlasfile.png")
+    assert ok, detail
+
+
+@pytest.mark.parametrize("instances", ["0", "2501", "many"])
+def test_bad_instance_count_is_refused(instances):
+    r = viewer(DATA / "meshes" / "cube.off", "--stage", "lod", "--instances", instances,
+               "--screenshot", "x.png")
+    assert r.returncode == 2 and "--instances" in r.stderr
