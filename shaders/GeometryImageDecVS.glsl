@@ -10,6 +10,8 @@ uniform isamplerBuffer tcDrawList;  // per drawn (instance, chart): (chart, inst
 uniform samplerBuffer tcInstances;  // per instance: the rows of its 3 x 4 transform
 uniform int tcLevel;                // the level of every chart of this draw call
 uniform int tcDrawOffset;           // first draw-list entry of this draw call
+uniform int tcDrawEnd;              // and the end of its entries
+uniform int tcCopies;               // charts per instance: copies of the grid, k in vertexMC.z
 uniform int tcStitching;            // 0 draws every chart unstitched (to show what eq. 8 mends)
 uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level, 3 attribute
 uniform samplerBuffer tcColors;     // the lookup table, 256 colours over tcRange

@@ -111,6 +111,37 @@ struct BufferTexture
   }
 };
 
+/// Appends the grid of level n: points (i, j, copy), triangles in tc::gridVertexIndex order, as
+/// tc::rebuildMesh orders them, counter-clockwise; the first point gets index `base`.
+void AppendGrid(int32_t n, int32_t copy, vtkIdType base, vtkPoints* points, vtkCellArray* polys)
+{
+  const int32_t big = 1 << n;
+  for (int32_t j = 0; j <= big; ++j)
+  {
+    for (int32_t i = 0; i + j <= big; ++i)
+    {
+      points->InsertNextPoint(i, j, copy);
+    }
+  }
+  for (int32_t j = 0; j < big; ++j)
+  {
+    for (int32_t i = 0; i + j < big; ++i)
+    {
+      const vtkIdType a = base + tc::gridVertexIndex(n, i, j);
+      const vtkIdType b = base + tc::gridVertexIndex(n, i + 1, j);
+      const vtkIdType c = base + tc::gridVertexIndex(n, i, j + 1);
+      const vtkIdType tri0[3] = { a, b, c };
+      polys->InsertNextCell(3, tri0);
+      if (i + j + 1 < big)
+      {
+        const vtkIdType d = base + tc::gridVertexIndex(n, i + 1, j + 1);
+        const vtkIdType tri1[3] = { b, d, c };
+        polys->InsertNextCell(3, tri1);
+      }
+    }
+  }
+}
+
 /// The shader replacements of shaders/ (STYLE.md 7), as (vertex?, tag, replace first, text).
 struct Replacement
 {
@@ -188,6 +219,7 @@ struct tcLODMapper::Internals
   /// (tc::gridVertexIndex), the vertex buffer every chart of a level shares.
   vtkNew<vtkPolyData> grid;
   std::vector<int64_t> gridTriangleStart; // per level, + 1
+  std::vector<int32_t> gridCopies;        // per level: charts one instance of the draw draws
 
   std::vector<double> instances{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   vtkTimeStamp instanceTime;
@@ -408,36 +440,24 @@ bool tcLODMapper::UpdateAtlas()
   points->SetDataTypeToFloat();
   vtkNew<vtkCellArray> polys;
   in.gridTriangleStart.assign(1, 0);
+  in.gridCopies.clear();
   vtkIdType base = 0;
   for (int32_t n = 0; n <= std::max(finest, 0); ++n)
   {
     const int32_t big = 1 << n;
-    for (int32_t j = 0; j <= big; ++j)
+    // Instances of one or four triangles cost far more than their triangles (measured with
+    // Mesa's llvmpipe: 6.7 us per instance; GPUs also start few instances per clock), so the
+    // coarse grids are repeated: one instance draws kCopyTriangles / 4^n charts, copy k carrying
+    // k in its vertices' third coordinate.
+    constexpr int32_t kCopyTriangles = 64;
+    const int32_t copies = std::max(1, kCopyTriangles >> (2 * n));
+    in.gridCopies.push_back(copies);
+    for (int32_t k = 0; k < copies; ++k)
     {
-      for (int32_t i = 0; i + j <= big; ++i)
-      {
-        points->InsertNextPoint(i, j, 0.0);
-      }
+      AppendGrid(n, k, base, points, polys);
+      base += tc::gridVertexCount(n);
     }
-    for (int32_t j = 0; j < big; ++j)
-    {
-      for (int32_t i = 0; i + j < big; ++i)
-      {
-        const vtkIdType a = base + tc::gridVertexIndex(n, i, j);
-        const vtkIdType b = base + tc::gridVertexIndex(n, i + 1, j);
-        const vtkIdType c = base + tc::gridVertexIndex(n, i, j + 1);
-        const vtkIdType tri0[3] = { a, b, c };
-        polys->InsertNextCell(3, tri0);
-        if (i + j + 1 < big)
-        {
-          const vtkIdType d = base + tc::gridVertexIndex(n, i + 1, j + 1);
-          const vtkIdType tri1[3] = { b, d, c };
-          polys->InsertNextCell(3, tri1);
-        }
-      }
-    }
-    base += tc::gridVertexCount(n);
-    in.gridTriangleStart.push_back(in.gridTriangleStart.back() + int64_t(big) * big);
+    in.gridTriangleStart.push_back(in.gridTriangleStart.back() + int64_t(copies) * big * big);
   }
   // Normals only so that VTK declares and lights them; the shader reads the normal image.
   vtkNew<vtkFloatArray> normals;
@@ -761,10 +781,12 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   size_t capturedVertices = 0;
   if (owner->CaptureVertices)
   {
-    for (size_t n = 0; n + 1 < in.list.levelStart.size(); ++n)
+    for (size_t n = 0; n + 1 < in.list.levelStart.size() && n < in.gridCopies.size(); ++n)
     {
-      capturedVertices += static_cast<size_t>(in.list.levelStart[n + 1] - in.list.levelStart[n]) *
-        3 * static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
+      const int64_t count = in.list.levelStart[n + 1] - in.list.levelStart[n];
+      const int64_t draws = (count + in.gridCopies[n] - 1) / in.gridCopies[n];
+      capturedVertices += static_cast<size_t>(draws) * 3 *
+        static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
     }
     in.capture->SetNumberOfVertices(capturedVertices);
     in.capture->SetPrimitiveMode(mode == GL_TRIANGLES ? GL_TRIANGLES : GL_POINTS);
@@ -772,6 +794,7 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   }
   tris.IBO->Bind();
   const size_t levels = std::min(in.list.levelStart.size(), in.gridTriangleStart.size()) - 1;
+  // gridCopies has one value per grid level.
   for (size_t n = 0; n < levels; ++n)
   {
     const int64_t first = in.list.levelStart[n];
@@ -780,13 +803,17 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     {
       continue;
     }
+    const int32_t copies = in.gridCopies[n];
     program->SetUniformi("tcLevel", static_cast<int>(n));
     program->SetUniformi("tcDrawOffset", static_cast<int>(first));
+    program->SetUniformi("tcDrawEnd", static_cast<int>(first + count));
+    program->SetUniformi("tcCopies", copies);
     const size_t offset = perTriangle * static_cast<size_t>(in.gridTriangleStart[n]);
     const size_t indices =
       perTriangle * static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
     glDrawElementsInstanced(mode, static_cast<GLsizei>(indices), GL_UNSIGNED_INT,
-      reinterpret_cast<const GLvoid*>(offset * sizeof(GLuint)), static_cast<GLsizei>(count));
+      reinterpret_cast<const GLvoid*>(offset * sizeof(GLuint)),
+      static_cast<GLsizei>((count + copies - 1) / copies));
   }
   tris.IBO->Release();
   if (owner->CaptureVertices)

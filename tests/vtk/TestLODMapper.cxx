@@ -145,10 +145,17 @@ int TestLODMapper(int argc, char* argv[])
       expectedVertices += 3LL << (2 * n);
     }
     double worst = 0.0;
-    long long mismatched = 0;
+    long long mismatched = 0, drawn = 0;
     for (vtkIdType v = 0; v < captured->GetNumberOfTuples(); ++v)
     {
       const float* r = captured->GetPointer(8 * v);
+      if (r[3] == -1.0f)
+      {
+        // A copy past the end of its level's charts in the last instance of a draw: collapsed.
+        mismatched += r[0] != 0.0f || r[1] != 0.0f || r[2] != 0.0f;
+        continue;
+      }
+      ++drawn;
       const int c = static_cast<int>(r[3]), i = static_cast<int>(r[4]), j = static_cast<int>(r[5]);
       const int n = static_cast<int>(r[6]);
       if (c < 0 || c >= nc || n != chosen[static_cast<size_t>(c)])
@@ -166,9 +173,8 @@ int TestLODMapper(int argc, char* argv[])
     }
     std::printf("exactness %d: %lld vertices drawn (expected %lld), largest distance to "
                 "tcGeometryImageMesh %.3g of the diagonal, %lld on a wrong chart or level\n",
-      trial, static_cast<long long>(captured->GetNumberOfTuples()), expectedVertices, worst,
-      mismatched);
-    TC_CHECK(check, captured->GetNumberOfTuples() == expectedVertices);
+      trial, drawn, expectedVertices, worst, mismatched);
+    TC_CHECK(check, drawn == expectedVertices);
     TC_CHECK(check, mismatched == 0);
     TC_CHECK(check, worst <= 1e-6);
   }
