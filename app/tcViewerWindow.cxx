@@ -74,6 +74,7 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkPlaneSource.h>
 #include <vtkSphereSource.h>
 #include <vtkTable.h>
 #include <vtkTextActor.h>
@@ -307,6 +308,12 @@ void tcViewerWindow::BuildUi()
   this->LODActor->GetProperty()->SetColor(0.85, 0.85, 0.85);
   this->LODActor->VisibilityOff();
   this->Renderer->AddActor(this->LODActor);
+  this->GroundMapper->SetInputConnection(this->Ground->GetOutputPort());
+  this->GroundActor->SetMapper(this->GroundMapper);
+  this->GroundActor->GetProperty()->SetColor(0.42, 0.45, 0.40);
+  this->GroundActor->GetProperty()->SetSpecular(0.0);
+  this->GroundActor->VisibilityOff();
+  this->Renderer->AddActor(this->GroundActor);
   this->RenderWindow->SetNumberOfLayers(2);
   this->OverlayRenderer->SetLayer(1);
   this->OverlayRenderer->InteractiveOff();
@@ -1209,6 +1216,7 @@ bool tcViewerWindow::ShowLOD(bool entering)
 void tcViewerWindow::HideLOD()
 {
   this->LODActor->VisibilityOff();
+  this->GroundActor->VisibilityOff();
   if (this->RenderWindow->HasRenderer(this->OverlayRenderer))
   {
     this->RenderWindow->RemoveRenderer(this->OverlayRenderer);
@@ -1251,6 +1259,14 @@ void tcViewerWindow::UpdateCrowd()
     matrices->SetTuple(k, m);
   }
   this->LODMapper->SetInstanceMatrices(matrices);
+  // The ground: the grid's extent plus half a cell around it, just below the feet.
+  const double x0 = cx - 0.5 * columns * spacing, x1 = cx + 0.5 * columns * spacing;
+  const double z0 = cz - 0.5 * rows * spacing, z1 = cz + 0.5 * rows * spacing;
+  const double y = b[2] - 1e-3 * size;
+  this->Ground->SetOrigin(x0, y, z1);
+  this->Ground->SetPoint1(x1, y, z1);
+  this->Ground->SetPoint2(x0, y, z0);
+  this->GroundActor->SetVisibility(n > 1 && this->CurrentStage == LODStage);
 }
 
 void tcViewerWindow::FrameCrowd()

@@ -79,6 +79,7 @@ class vtkImageActor;
 class vtkLinearSubdivisionFilter;
 class vtkMultiBlockDataSet;
 class vtkObject;
+class vtkPlaneSource;
 class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderer;
@@ -226,6 +227,9 @@ private:
   vtkNew<vtkTextActor> AtlasCaption;
   vtkNew<tcLODMapper> LODMapper;
   vtkNew<vtkActor> LODActor;
+  vtkNew<vtkPlaneSource> Ground; ///< the crowd's ground plane (more than one instance)
+  vtkNew<vtkPolyDataMapper> GroundMapper;
+  vtkNew<vtkActor> GroundActor;
   vtkNew<vtkCamera> LODCamera;
   vtkSmartPointer<vtkCamera> StageCamera; ///< the other stages' camera, while the LOD stage shows
   vtkNew<vtkRenderer> OverlayRenderer;    ///< layer 1 over the 3-D view: the LOD statistics
