@@ -228,6 +228,7 @@ struct tcLODMapper::Internals
   tc::LodDrawList list;
   bool haveSelection = false;
   double selectionSeconds = 0.0;
+  double drawListSeconds = 0.0;
 
   BufferTexture positions, normals, origins, chartTable, drawList, instanceRows, colors;
   vtkTimeStamp uploadTime;
@@ -369,6 +370,11 @@ vtkIdType tcLODMapper::GetChartsAtLevel(int level) const
 double tcLODMapper::GetSelectionSeconds() const
 {
   return this->Internal->selectionSeconds;
+}
+
+double tcLODMapper::GetDrawListSeconds() const
+{
+  return this->Internal->drawListSeconds;
 }
 
 void tcLODMapper::GetLevels(vtkIntArray* levels) const
@@ -659,12 +665,14 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
       },
       tc::Progress(), 1);
   }
+  const auto selected = std::chrono::steady_clock::now();
   // The levels above are clamped to each chart's range, which is all buildDrawList checks.
   tc::buildDrawList(in.charts, in.levels.data(), instances, in.list);
   in.drawList.Upload(in.list.entries, true);
   in.haveSelection = true;
-  in.selectionSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  in.selectionSeconds = std::chrono::duration<double>(selected - start).count();
+  in.drawListSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - selected).count();
 }
 
 void tcLODMapper::Render(vtkRenderer* ren, vtkActor* act)
