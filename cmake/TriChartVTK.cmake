@@ -22,6 +22,14 @@ endif ()
 find_package(VTK 9.1 REQUIRED COMPONENTS ${_tc_vtk_components})
 message(STATUS "TriChart: VTK ${VTK_VERSION} from ${VTK_DIR}")
 
+# The ParaView representation depends on ParaView's RemotingViews: only with ParaView.
+set(_tc_paraview_module_files)
+set(_tc_paraview_modules)
+if (TRICHART_BUILD_PARAVIEW_PLUGIN AND ParaView_FOUND)
+  set(_tc_paraview_module_files ${CMAKE_SOURCE_DIR}/filters/ParaView/vtk.module)
+  set(_tc_paraview_modules TriChart::ParaView)
+endif ()
+
 set(BUILD_SHARED_LIBS ON)
 vtk_module_scan(
   MODULE_FILES
@@ -33,9 +41,10 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/BaseComplex/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/GeometryImages/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Rendering/vtk.module
+    ${_tc_paraview_module_files}
   REQUEST_MODULES
     TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
-    TriChart::BaseComplex TriChart::GeometryImages TriChart::Rendering
+    TriChart::BaseComplex TriChart::GeometryImages TriChart::Rendering ${_tc_paraview_modules}
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -50,10 +59,11 @@ vtk_module_build(
   VERSION ${PROJECT_VERSION}
   SOVERSION ${PROJECT_VERSION_MAJOR})
 
-# The filter modules that users see (the Common module is internal).
+# The filter modules that users see (the Common module is internal); with ParaView, also the
+# representation (wrapped for pvpython, whose paraview.modules it imports).
 set(TRICHART_FILTER_MODULES
   TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex
-  TriChart::GeometryImages TriChart::Rendering)
+  TriChart::GeometryImages TriChart::Rendering ${_tc_paraview_modules})
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(
