@@ -72,8 +72,9 @@ triangles = lod.GetTrianglesDrawn()
 print("LODBias 0: charts drawn", drawn, "triangles drawn", triangles)
 check(drawn == charts, "every chart is drawn when the whole atlas is in view")
 check(triangles > 0, "triangles are drawn")
-check(display.LODBias == 0.0 and display.ErrorTarget == 0.0 and display.FreezeLOD == 0
-      and display.LODColorMode == "Actor", "TriChart LOD defaults match the C++ defaults")
+check(display.LODBias == 0.0 and display.ErrorTarget == 1.0 and display.FreezeLOD == 0
+      and display.LODColorMode == "Actor",
+      "TriChart LOD defaults: the mapper's, with a 1-pixel error target as in the viewer")
 
 screenshot = os.path.join(folder, "lod.png")
 SaveScreenshot(screenshot, view, ImageResolution=[400, 400], TransparentBackground=0)
