@@ -27,6 +27,9 @@
  *
  * Statistics of the last frame: GetTrianglesDrawn, GetChartsDrawn, GetChartsAtLevel,
  * GetSelectionSeconds, GetDrawListSeconds.
+ *
+ * One mapper draws into one render window (its buffer textures belong to that window's
+ * context); give each window its own mapper, as ParaView's views and the viewer do.
  */
 #ifndef tcLODMapper_h
 #define tcLODMapper_h
