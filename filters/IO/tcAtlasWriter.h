@@ -3,7 +3,7 @@
  * @class tcAtlasWriter
  * @brief Writes the pipeline's atlas multiblock (tcGeometryImages' output) as one OpenEXR
  * multi-part file: float32 images, one part per attribute and mip step, and the chart table as
- * JSON in the header.
+ * zlib-compressed JSON in the header.
  *
  * The file is written to a temporary name in the same folder and renamed at the end, so a
  * failed or aborted write never leaves a half-written atlas (and keeps an older file intact).

@@ -4,7 +4,10 @@
 #include "tc/atlas.h"
 #include "tc/atlas_io.h"
 #include "tc/errors.h"
+#include "tc/geometry_images.h"
+#include "tc/path_tracing.h"
 
+#include "pipeline_fixture.h"
 #include "test_progress.h"
 
 #include <ImfChannelList.h>
@@ -542,21 +545,80 @@ ExrPart& partNamed(std::vector<ExrPart>& parts, const std::string& name)
   throw std::runtime_error("no part " + name);
 }
 
-/// Replaces the metadata of part 0 by `text`, with a matching checksum when `fixChecksum`.
+int crc32Of(const std::string& text)
+{
+  return static_cast<int>(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(text.data()),
+    static_cast<uInt>(text.size())));
+}
+
+std::string deflated(const std::string& text)
+{
+  uLongf size = compressBound(static_cast<uLong>(text.size()));
+  std::string packed(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(&packed[0]), &size,
+        reinterpret_cast<const Bytef*>(text.data()), static_cast<uLong>(text.size()),
+        Z_BEST_COMPRESSION) != Z_OK)
+  {
+    throw std::runtime_error("compress2 failed");
+  }
+  packed.resize(size);
+  return packed;
+}
+
+/// Replaces the metadata of part 0 by `text` as version 2 stores it (deflated, with its length),
+/// with a matching checksum when `fixChecksum`.
 void setMetadata(std::vector<ExrPart>& parts, const std::string& text, bool fixChecksum = true)
 {
-  parts[0].header.insert("trichartAtlas", Imf::StringAttribute(text));
+  parts[0].header.erase("trichartAtlas");
+  parts[0].header.insert("trichartAtlasZ", Imf::StringAttribute(deflated(text)));
+  parts[0].header.insert("trichartAtlasLength", Imf::IntAttribute(static_cast<int>(text.size())));
   if (fixChecksum)
   {
-    const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(text.data()),
-      static_cast<uInt>(text.size()));
-    parts[0].header.insert("trichartAtlasCrc32", Imf::IntAttribute(static_cast<int>(crc)));
+    parts[0].header.insert("trichartAtlasCrc32", Imf::IntAttribute(crc32Of(text)));
   }
+}
+
+/// Replaces the metadata of part 0 by `text` as version 1 stored it: plain, with its checksum.
+void setPlainMetadata(std::vector<ExrPart>& parts, const std::string& text)
+{
+  parts[0].header.erase("trichartAtlasZ");
+  parts[0].header.erase("trichartAtlasLength");
+  parts[0].header.insert("trichartAtlas", Imf::StringAttribute(text));
+  parts[0].header.insert("trichartAtlasCrc32", Imf::IntAttribute(crc32Of(text)));
+}
+
+/// The JSON text of the version-2 metadata of part 0.
+std::string metadataTextOf(const std::vector<ExrPart>& parts)
+{
+  const Imf::Header& header = parts[0].header;
+  const std::string& packed = header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value();
+  std::string text(
+    static_cast<size_t>(header.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value()),
+    '\0');
+  uLongf size = text.size();
+  if (uncompress(reinterpret_cast<Bytef*>(&text[0]), &size,
+        reinterpret_cast<const Bytef*>(packed.data()), static_cast<uLong>(packed.size())) != Z_OK ||
+    size != text.size())
+  {
+    throw std::runtime_error("the metadata does not inflate to its length");
+  }
+  return text;
 }
 
 Json metadataOf(const std::vector<ExrPart>& parts)
 {
-  return Json::parse(parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlas").value());
+  return Json::parse(metadataTextOf(parts));
+}
+
+/// Rewrites the atlas file `from` as version 1 wrote it to `to`: the same parts and the same
+/// JSON text with "version": 1, stored plainly.
+void writeVersion1(const std::string& from, const std::string& to)
+{
+  std::vector<ExrPart> parts = loadParts(from);
+  Json metadata = metadataOf(parts);
+  metadata["version"] = 1;
+  setPlainMetadata(parts, metadata.dump());
+  saveParts(to, parts);
 }
 
 /// A fresh, empty folder per test, removed afterwards.
@@ -717,13 +779,45 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(bitsOf(z[static_cast<size_t>(y * image.width + x)]),
     bitsOf(image.data[0][static_cast<size_t>(3 * (y * image.width + x) + 2)]));
 
-  const Json metadata = metadataOf(parts);
+  // The metadata: deflated JSON with its length and the checksum of the text, in part 0 only.
+  const Imf::Header& first = parts[0].header;
+  ASSERT_TRUE(first.findTypedAttribute<Imf::StringAttribute>("trichartAtlasZ"));
+  ASSERT_TRUE(first.findTypedAttribute<Imf::IntAttribute>("trichartAtlasLength"));
+  ASSERT_TRUE(first.findTypedAttribute<Imf::IntAttribute>("trichartAtlasCrc32"));
+  EXPECT_FALSE(first.findTypedAttribute<Imf::StringAttribute>("trichartAtlas"));
+  const std::string text = metadataTextOf(parts);
+  EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
+    static_cast<int>(text.size()));
+  EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
+  EXPECT_EQ(tc::kAtlasFileVersion, 2);
+  const Json metadata = Json::parse(text);
   EXPECT_EQ(metadata["format"], "TriChart atlas");
   EXPECT_EQ(metadata["version"], tc::kAtlasFileVersion);
   EXPECT_EQ(metadata["charts"].size(), 4u);
   EXPECT_EQ(metadata["charts"][0]["levelError"][0], "inf");
   EXPECT_TRUE(metadata["inputPoints"].is_number_integer());
-  EXPECT_FALSE(parts[1].header.findTypedAttribute<Imf::StringAttribute>("trichartAtlas"));
+  for (const char* name : { "trichartAtlasZ", "trichartAtlasLength", "trichartAtlasCrc32" })
+  {
+    EXPECT_FALSE(parts[1].header.find(name) != parts[1].header.end()) << name;
+  }
+}
+
+TEST_F(AtlasIo, CompressedMetadataSurvivesEveryByteValue)
+{
+  // The deflated metadata is binary (NULs included); OpenEXR's string attribute must carry it
+  // unchanged, through OpenEXRCore's header check too.
+  const std::string path = file("bytes.exr");
+  tc::writeAtlas(tetrahedronAtlas(2, true), path);
+  const std::string packed =
+    loadParts(path)[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value();
+  std::vector<bool> seen(256, false);
+  for (const char c : packed)
+  {
+    seen[static_cast<unsigned char>(c)] = true;
+  }
+  EXPECT_TRUE(seen[0]) << "no NUL in the " << packed.size() << " compressed bytes";
+  EXPECT_GT(std::count(seen.begin(), seen.end(), true), 200);
+  expectBitIdentical(tetrahedronAtlas(2, true), tc::readAtlas(path));
 }
 
 TEST_F(AtlasIo, SmoothAtlasSizeAndBytesPerTexel)
@@ -922,6 +1016,208 @@ TEST_F(AtlasIo, RefusesDamagedMetadata)
   EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
 }
 
+TEST_F(AtlasIo, ReadsVersion1FilesBitExactly)
+{
+  const tc::Atlas atlas = tetrahedronAtlas(2, true);
+  const std::string current = file("version2.exr");
+  tc::writeAtlas(atlas, current);
+  const std::string old = file("version1.exr");
+  writeVersion1(current, old);
+
+  // The file really has the old layout: plain JSON, no compressed block.
+  const std::vector<ExrPart> parts = loadParts(old);
+  ASSERT_TRUE(parts[0].header.findTypedAttribute<Imf::StringAttribute>("trichartAtlas"));
+  EXPECT_FALSE(parts[0].header.findTypedAttribute<Imf::StringAttribute>("trichartAtlasZ"));
+  EXPECT_FALSE(parts[0].header.findTypedAttribute<Imf::IntAttribute>("trichartAtlasLength"));
+  EXPECT_EQ(
+    Json::parse(
+      parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlas").value())["version"],
+    1);
+
+  EXPECT_TRUE(tc::isAtlasFile(old));
+  expectBitIdentical(atlas, tc::readAtlas(old));
+
+  // Version 1's checksum still guards its plain text.
+  std::string error = damagedError(
+    [](std::vector<ExrPart>& edited)
+    {
+      Json metadata = metadataOf(edited);
+      metadata["version"] = 1;
+      setPlainMetadata(edited, metadata.dump());
+      metadata["charts"][1]["box"][3] = 0.25;
+      edited[0].header.insert("trichartAtlas", Imf::StringAttribute(metadata.dump()));
+    });
+  EXPECT_TRUE(mentions(error, "metadata does not match its checksum")) << error;
+}
+
+TEST_F(AtlasIo, RefusesMetadataStoredUnlikeItsVersion)
+{
+  // Version 1 text in the compressed block, version 2 text stored plainly.
+  std::string error = metadataError([](Json& metadata) { metadata["version"] = 1; });
+  EXPECT_TRUE(mentions(error, "says format version 1 but is stored compressed")) << error;
+  EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
+  error = damagedError(
+    [](std::vector<ExrPart>& parts) { setPlainMetadata(parts, metadataTextOf(parts)); });
+  EXPECT_TRUE(mentions(error, "says format version 2 but is stored as plain text")) << error;
+  EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
+}
+
+TEST_F(AtlasIo, RefusesDamagedCompressedMetadata)
+{
+  const std::string damaged = "the file is damaged (write the atlas again)";
+  const auto withPacked = [this](const std::function<std::string(const std::string&)>& edit)
+  {
+    return damagedError(
+      [&edit](std::vector<ExrPart>& parts)
+      {
+        Imf::Header& header = parts[0].header;
+        const std::string packed =
+          header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value();
+        header.insert("trichartAtlasZ", Imf::StringAttribute(edit(packed)));
+      });
+  };
+  const auto withLength = [this](const std::function<int(int)>& edit)
+  {
+    return damagedError(
+      [&edit](std::vector<ExrPart>& parts)
+      {
+        Imf::Header& header = parts[0].header;
+        const int length = header.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value();
+        header.insert("trichartAtlasLength", Imf::IntAttribute(edit(length)));
+      });
+  };
+
+  // A flipped byte in the middle of the deflate data (the checksum of the text left valid):
+  // refused by zlib, by the declared length or by the checksum, never read.
+  std::string error = withPacked(
+    [](std::string packed)
+    {
+      packed[packed.size() / 2] = static_cast<char>(packed[packed.size() / 2] ^ 0x5a);
+      return packed;
+    });
+  EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
+  EXPECT_TRUE(mentions(error, "damaged")) << error;
+
+  // Cut short, at its end (the Adler-32 of zlib's stream) and in its middle.
+  for (const size_t cut : { size_t(1), size_t(4), size_t(300) })
+  {
+    error = withPacked(
+      [cut](const std::string& packed) { return packed.substr(0, packed.size() - cut); });
+    EXPECT_TRUE(mentions(error, "its compressed metadata is cut short; " + damaged))
+      << cut << ": " << error;
+    EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
+  }
+  error = withPacked([](const std::string&) { return std::string(); });
+  EXPECT_TRUE(mentions(error, "which deflate cannot give")) << error;
+
+  // Bytes after the end of the stream.
+  error = withPacked([](const std::string& packed) { return packed + "xy"; });
+  EXPECT_TRUE(mentions(error, "has 2 stray bytes after its end")) << error;
+
+  // Not zlib data at all.
+  error = withPacked([](const std::string& packed) { return std::string(packed.size(), 'x'); });
+  EXPECT_TRUE(mentions(error, "its compressed metadata is corrupt (zlib: ")) << error;
+
+  // Declared lengths: one byte short, one byte long, more than deflate can give, negative,
+  // missing.
+  error = withLength([](int length) { return length - 1; });
+  EXPECT_TRUE(mentions(error, "bytes, not the")) << error;
+  error = withLength([](int length) { return length + 1; });
+  EXPECT_TRUE(mentions(error, "bytes, not the")) << error;
+  error = withLength([](int length) { return length / 2; });
+  EXPECT_TRUE(mentions(error, "inflates to more than the")) << error;
+  const auto peakMiB = []
+  {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024; // KiB on Linux
+  };
+  const long before = peakMiB();
+  error = withLength([](int) { return std::numeric_limits<int>::max(); });
+  EXPECT_TRUE(
+    mentions(error, "declares a length of 2147483647 bytes, which deflate cannot give; " + damaged))
+    << error;
+  EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
+  EXPECT_LT(peakMiB() - before, 64) << "the declared length was allocated";
+  error = withLength([](int) { return -5; });
+  EXPECT_TRUE(mentions(error, "declares a length of -5 bytes")) << error;
+  error =
+    damagedError([](std::vector<ExrPart>& parts) { parts[0].header.erase("trichartAtlasLength"); });
+  EXPECT_TRUE(mentions(error, "has no 'trichartAtlasLength' attribute")) << error;
+}
+
+TEST_F(AtlasIo, FlippedBytesInTheCompressedMetadataAreRefusedOrHarmless)
+{
+  // Every byte of the deflate data flipped in place in the file (its CRC-32 of the text, its
+  // length and every OpenEXR size unchanged).
+  const tc::Atlas atlas = tetrahedronAtlas(2, true);
+  const std::string good = file("good.exr");
+  tc::writeAtlas(atlas, good);
+  const std::string bytes = fileBytes(good);
+  const std::string key("trichartAtlasZ\0string\0", 22);
+  const size_t sizeAt = bytes.find(key) + key.size();
+  ASSERT_LT(sizeAt + 4, bytes.size());
+  uint32_t size = 0;
+  std::memcpy(&size, bytes.data() + sizeAt, 4);
+  const size_t begin = sizeAt + 4;
+  ASSERT_LE(begin + size, bytes.size());
+  const std::string bad = file("flipped.exr");
+  size_t refused = 0;
+  for (size_t at = begin; at < begin + size; ++at)
+  {
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x5a);
+    writeBytes(bad, damaged);
+    try
+    {
+      const tc::Atlas read = tc::readAtlas(bad);
+      // Only bits that deflate ignores (the padding of its last byte) can change harmlessly.
+      SCOPED_TRACE("byte " + std::to_string(at - begin) + " of the block flipped and read");
+      expectBitIdentical(atlas, read);
+    }
+    catch (const tc::InputError& error)
+    {
+      ++refused;
+      EXPECT_TRUE(mentions(error.what(), bad)) << error.what();
+    }
+  }
+  std::cout << "[ figures  ] " << refused << " of " << size
+            << " single-byte flips in the compressed metadata refused\n";
+  EXPECT_GE(refused + 1, size);
+}
+
+TEST_F(AtlasIo, CompressedMetadataMakesTheFileSmallerThanVersion1)
+{
+  // The atlas of the bundled bunny with default options, 100+ charts: a chart table like a real
+  // one, not the tetrahedron's four charts.
+  const tctest::PipelineCase* bunny = tctest::pipelineCase(tctest::pipelineMeshPath("bunny_npm"));
+  ASSERT_TRUE(bunny);
+  const tc::Atlas atlas =
+    tc::buildGeometryImages(tc::tracePaths(bunny->mesh, bunny->result), bunny->result, {}, {}, {});
+  ASSERT_GE(atlas.charts.size(), 100u);
+  const std::string current = file("version2.exr");
+  tc::writeAtlas(atlas, current);
+  const std::string old = file("version1.exr");
+  writeVersion1(current, old);
+  expectBitIdentical(atlas, tc::readAtlas(old));
+  expectBitIdentical(atlas, tc::readAtlas(current));
+
+  const std::vector<ExrPart> parts = loadParts(current);
+  const double text = static_cast<double>(metadataTextOf(parts).size());
+  const double packed = static_cast<double>(
+    parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value().size());
+  const double before = static_cast<double>(fs::file_size(old));
+  const double after = static_cast<double>(fs::file_size(current));
+  const double triangles = static_cast<double>(bunny->mesh.numTriangles());
+  std::cout << "[ figures  ] bunny_npm, " << atlas.charts.size() << " charts: metadata " << text
+            << " -> " << packed << " bytes (" << text / packed << "x); file " << before << " -> "
+            << after << " bytes (" << before / after << "x smaller), " << before / triangles
+            << " -> " << after / triangles << " bytes per input triangle\n";
+  // Deflate shrinks JSON text by more than 2x; the file must lose at least half the text.
+  EXPECT_GT(text / packed, 2.0);
+  EXPECT_LT(after, before - text / 2);
+}
+
 TEST_F(AtlasIo, RefusesMissingPartsWrongSizesAndChannels)
 {
   std::string error =
@@ -1026,8 +1322,8 @@ TEST_F(AtlasIo, RefusesHugeSizesInDamagedHeadersWithoutAllocatingThem)
   };
   const long before = peakMiB();
 
-  // The size of the metadata string, then the data window of part 1, made 2^31 - 1.
-  const std::string metadataKey("trichartAtlas\0string\0", 21);
+  // The size of the compressed metadata string, then the data window of part 1, made 2^31 - 1.
+  const std::string metadataKey("trichartAtlasZ\0string\0", 22);
   const size_t metadataSize = bytes.find(metadataKey) + metadataKey.size();
   const std::string windowKey("dataWindow\0box2i\0", 17);
   const size_t window1 = bytes.find(windowKey, bytes.find(windowKey) + 1) + windowKey.size() + 4;
@@ -1072,7 +1368,7 @@ TEST_F(AtlasIo, FlippedBytesAreRefusedOrHarmless)
       EXPECT_TRUE(mentions(error.what(), bad)) << error.what();
     }
     // The file ends with the texel chunks (the headers, with the metadata, and the offset
-    // tables take its first 57 %): every flip in its last third is refused.
+    // tables take its first 52 %): every flip in its last third is refused.
     if (at >= 2 * bytes.size() / 3)
     {
       EXPECT_TRUE(wasRefused) << "byte " << at << " of " << bytes.size();
