@@ -26,6 +26,7 @@ tcGeometryImages::tcGeometryImages()
   this->MinLevel = defaults.minLevel;
   this->MaxLevel = defaults.maxLevel;
   this->CurvatureWeight = defaults.curvatureWeight;
+  this->LevelRule = static_cast<int>(defaults.levelRule);
 }
 
 tcGeometryImages::~tcGeometryImages() = default;
@@ -114,6 +115,8 @@ int tcGeometryImages::RequestData(
   options.minLevel = this->MinLevel;
   options.maxLevel = this->MaxLevel;
   options.curvatureWeight = this->CurvatureWeight;
+  options.levelRule =
+    this->LevelRule == LEVEL_RULE_AREA ? tc::LevelRule::Area : tc::LevelRule::Error;
   tc::Atlas atlas;
   try
   {
@@ -140,6 +143,7 @@ void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinLevel: " << this->MinLevel << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
+  os << indent << "LevelRule: " << (this->LevelRule == LEVEL_RULE_AREA ? "Area" : "Error") << "\n";
   os << indent << "ResampledArrays:";
   for (const std::string& name : this->ResampledArrays)
   {

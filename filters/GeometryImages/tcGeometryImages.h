@@ -7,10 +7,10 @@
  * Each patch is parameterized onto a right triangle (Floater's mean-value coordinates, its
  * three paths fixed on the sides by arc length) and resampled on grids of 2^d + 1 samples per
  * side for d = 0 .. d_max, d_max following the patch's curvature-weighted area under a total
- * sample budget. Shared sides are sampled once along their path, so neighbouring charts hold
- * bit-identical samples there and stitch without cracks. Two charts of close resolution share
- * each (2^dh + 2) x (2^dh + 1) rectangle. Every chart also gets an oriented bounding box and an
- * error estimate per level.
+ * sample budget (or by measured error under it, see SetLevelRule). Shared sides are sampled once
+ * along their path, so neighbouring charts hold bit-identical samples there and stitch without
+ * cracks. Two charts of close resolution share each (2^dh + 2) x (2^dh + 1) rectangle. Every chart
+ * also gets an oriented bounding box and an error estimate per level.
  *
  * Input: tcPathTracing's first output. Output: the atlas as a multiblock (block 0 the chart
  * table, block 1 one vtkImageData per mip step with float arrays Position, Normal and the
@@ -55,6 +55,21 @@ public:
   ///@}
 
   ///@{
+  /// How each chart's d_max is chosen under the budget: Area (0) makes 4^d_max proportional to
+  /// the curvature-weighted area (paper section 5.2); Error (1, the default) measures every
+  /// chart up to two levels above that and spends the budget on the largest measured error.
+  enum LevelRules
+  {
+    LEVEL_RULE_AREA = 0,
+    LEVEL_RULE_ERROR = 1
+  };
+  vtkSetClampMacro(LevelRule, int, LEVEL_RULE_AREA, LEVEL_RULE_ERROR);
+  vtkGetMacro(LevelRule, int);
+  void SetLevelRuleToArea() { this->SetLevelRule(LEVEL_RULE_AREA); }
+  void SetLevelRuleToError() { this->SetLevelRule(LEVEL_RULE_ERROR); }
+  ///@}
+
+  ///@{
   /// Point arrays of the input to resample into the atlas besides Position and Normal.
   void AddResampledArray(const char* name);
   void ClearResampledArrays();
@@ -75,6 +90,7 @@ private:
   int MinLevel = 2;
   int MaxLevel = 8;
   double CurvatureWeight = 1.0;
+  int LevelRule = LEVEL_RULE_ERROR;
   std::vector<std::string> ResampledArrays;
 };
 

@@ -159,7 +159,8 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     """tcGeometryImages on trace_paths' first output; returns the atlas (a multiblock of the
     chart table and one image per mip step).
 
-    Options: sample_budget, min_level, max_level, curvature_weight.
+    Options: sample_budget, min_level, max_level, curvature_weight, level_rule (0: by
+    curvature-weighted area, 1: by measured error, the default).
     """
     f = _configure(TriChartGeometryImages.tcGeometryImages(), options)
     for name in resampled_arrays:

@@ -133,6 +133,42 @@ TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacte
   EXPECT_GT(farApart, 0);
 }
 
+TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
+{
+  // Four samples per input point (at least 45, level 3, per chart, so that the many small
+  // charts of some base complexes leave minLevel) under both level rules: the error rule
+  // spends them on the charts with the largest measured levelError, so its largest error at
+  // the finest level is not above the area rule's, and it stays within the budget.
+  const tctest::PipelineCase& c = *B_->input;
+  const int64_t budget = std::max<int64_t>(
+    4 * c.mesh.numPoints(), 45 * static_cast<int64_t>(c.result.baseTriangles.size() / 3));
+  double largest[2] = { 0.0, 0.0 };
+  int64_t samples[2] = { 0, 0 };
+  int32_t finest[2] = { 0, 0 };
+  for (const tc::LevelRule rule : { tc::LevelRule::Area, tc::LevelRule::Error })
+  {
+    tc::GeometryImageOptions options;
+    options.sampleBudget = budget;
+    options.levelRule = rule;
+    const tc::Atlas atlas = tc::buildGeometryImages(B_->patches, c.result, {}, {}, {}, options);
+    const int r = static_cast<int>(rule);
+    for (const tc::AtlasChart& ch : atlas.charts)
+    {
+      largest[r] = std::max(largest[r], ch.levelError[static_cast<size_t>(ch.maxLevel)]);
+      const int64_t n = int64_t(1) << ch.maxLevel;
+      samples[r] += (n + 1) * (n + 2) / 2;
+    }
+    finest[r] = atlas.maxLevel();
+  }
+  std::printf("%s: budget %lld; area rule: %lld samples, finest level %d, largest finest error "
+              "%.4f%% of the diagonal; error rule: %lld, %d, %.4f%%\n",
+    GetParam().c_str(), static_cast<long long>(budget), static_cast<long long>(samples[0]),
+    finest[0], 100.0 * largest[0] / B_->atlas.inputDiagonal, static_cast<long long>(samples[1]),
+    finest[1], 100.0 * largest[1] / B_->atlas.inputDiagonal);
+  EXPECT_LE(samples[1], budget);
+  EXPECT_LE(largest[1], largest[0]);
+}
+
 INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh,
   ::testing::Values("bunny_npm", "cube", "fandisk", "elephant", "cow", "homer", "couplingdown"),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });

@@ -956,12 +956,16 @@ TEST(GeometryImages, BudgetIsRespectedAndLevelsFollowIt)
   EXPECT_THROW(tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, tight), tc::InputError);
 }
 
-TEST(GeometryImages, LargerOrMoreCurvedPatchesGetFinerLevels)
+TEST(GeometryImages, AreaRuleGivesLargerOrMoreCurvedPatchesFinerLevels)
 {
   // Skewed octahedron: the octants on the far side of the tilted vertex are 5x larger than
   // those on its near side.
   const Synthetic& s = skewedCase().input;
-  const tc::Atlas& atlas = skewedCase().atlas;
+  tc::GeometryImageOptions areaRule;
+  areaRule.levelRule = tc::LevelRule::Area;
+  tc::GeometryImageOptions skewedOptions = areaRule;
+  skewedOptions.sampleBudget = 3000;
+  const tc::Atlas atlas = tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, skewedOptions);
   const std::vector<double> area = patchAreas(s.patches, 8);
   const auto big = std::max_element(area.begin(), area.end()) - area.begin();
   const auto small = std::min_element(area.begin(), area.end()) - area.begin();
@@ -994,7 +998,7 @@ TEST(GeometryImages, LargerOrMoreCurvedPatchesGetFinerLevels)
       }
     }
   }
-  const tc::Atlas curved = tc::buildGeometryImages(r.patches, r.base, {}, H, {});
+  const tc::Atlas curved = tc::buildGeometryImages(r.patches, r.base, {}, H, {}, areaRule);
   for (int32_t c = 0; c < 8; ++c)
   {
     if (c != 5)
@@ -1004,13 +1008,127 @@ TEST(GeometryImages, LargerOrMoreCurvedPatchesGetFinerLevels)
   }
   std::printf("[          ] uniform d_max %d; with 20x |H| on one octant: %d there, %d elsewhere\n",
     sphereCase().atlas.charts[0].maxLevel, curved.charts[5].maxLevel, curved.charts[0].maxLevel);
-  tc::GeometryImageOptions options;
+  tc::GeometryImageOptions options = areaRule;
   options.curvatureWeight = 0.0;
   const tc::Atlas unweighted = tc::buildGeometryImages(r.patches, r.base, {}, H, {}, options);
   for (int32_t c = 0; c < 8; ++c)
   {
     EXPECT_EQ(unweighted.charts[c].maxLevel, unweighted.charts[0].maxLevel);
   }
+}
+
+/// The unit cube of cube(n) with a bump of height 0.3 on its top face (z = 1; charts 2 and 3):
+/// z += 0.3 sin(pi x) sin(pi y) there, which leaves the cube's edges where they are.
+Synthetic bumpedCube(int n)
+{
+  Synthetic s = cube(n);
+  std::vector<double>& x = s.patches.mesh.points;
+  for (size_t v = 0; v + 2 < x.size(); v += 3)
+  {
+    if (x[v + 2] == 1.0)
+    {
+      const double pi = 3.14159265358979323846;
+      x[v + 2] += 0.3 * std::sin(pi * x[v]) * std::sin(pi * x[v + 1]);
+    }
+  }
+  return s;
+}
+
+double largestFinestError(const tc::Atlas& atlas)
+{
+  double worst = 0.0;
+  for (const tc::AtlasChart& ch : atlas.charts)
+  {
+    worst = std::max(worst, ch.levelError[static_cast<size_t>(ch.maxLevel)]);
+  }
+  return worst;
+}
+
+TEST(GeometryImages, ErrorRuleGivesACurvedRegionFinerLevelsThanAreaAlone)
+{
+  // A budget of level 4 for each of the 12 charts: the area rule spreads it evenly (the two
+  // bumped charts are only 1.2x larger), the error rule moves it from the ten flat charts,
+  // whose error is float rounding at any level, to the two bumped ones.
+  const Synthetic s = bumpedCube(16);
+  tc::GeometryImageOptions options;
+  options.sampleBudget = 12 * samplesAt(4);
+  options.levelRule = tc::LevelRule::Area;
+  const tc::Atlas byArea = tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, options);
+  options.levelRule = tc::LevelRule::Error;
+  const tc::Atlas byError = tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, options);
+  expectAtlasInvariants(byError);
+  std::printf("[          ] bumped cube, d_max by area / by error:");
+  for (int32_t c = 0; c < 12; ++c)
+  {
+    std::printf(" %d/%d", byArea.charts[c].maxLevel, byError.charts[c].maxLevel);
+  }
+  std::printf("\n[          ] largest finest levelError: area rule %.5f, error rule %.5f "
+              "(samples %lld and %lld of %lld)\n",
+    largestFinestError(byArea), largestFinestError(byError),
+    static_cast<long long>(finestSamples(byArea)), static_cast<long long>(finestSamples(byError)),
+    static_cast<long long>(options.sampleBudget));
+  for (int32_t c = 0; c < 12; ++c)
+  {
+    if (c == 2 || c == 3)
+    {
+      EXPECT_GT(byError.charts[c].maxLevel, byArea.charts[c].maxLevel) << "bumped chart " << c;
+      EXPECT_GT(byError.charts[c].levelError[0], 0.1) << "the bump is 0.3 high";
+    }
+    else
+    {
+      EXPECT_LT(byError.charts[c].maxLevel, byArea.charts[c].maxLevel) << "flat chart " << c;
+      EXPECT_LT(byError.charts[c].levelError[0], 1e-6) << "flat chart " << c;
+      EXPECT_EQ(byError.charts[c].maxLevel, byError.charts[0].maxLevel)
+        << "flat charts tie and share the budget evenly";
+    }
+  }
+  EXPECT_LE(finestSamples(byError), options.sampleBudget);
+  EXPECT_LT(largestFinestError(byError), 0.75 * largestFinestError(byArea));
+}
+
+TEST(GeometryImages, ErrorRuleRespectsTheBudgetAndIsDeterministic)
+{
+  const Synthetic skewed = sphere(12, 60.0);
+  const Synthetic bumped = bumpedCube(8);
+  for (const Synthetic* s : { &skewed, &bumped })
+  {
+    const int32_t charts = static_cast<int32_t>(s->base.baseTriangles.size() / 3);
+    for (int64_t budget : { charts * samplesAt(2), int64_t(1000), int64_t(4000), int64_t(16000) })
+    {
+      tc::GeometryImageOptions options;
+      options.sampleBudget = budget;
+      options.maxLevel = 6;
+      const tc::Atlas a = tc::buildGeometryImages(s->patches, s->base, {}, {}, {}, options);
+      const tc::Atlas b = tc::buildGeometryImages(s->patches, s->base, {}, {}, {}, options);
+      options.levelRule = tc::LevelRule::Area;
+      const tc::Atlas area = tc::buildGeometryImages(s->patches, s->base, {}, {}, {}, options);
+      std::printf("[          ] %d charts, budget %lld: %lld samples by error (%lld by area), "
+                  "largest finest error %.4f (%.4f by area)\n",
+        charts, static_cast<long long>(budget), static_cast<long long>(finestSamples(a)),
+        static_cast<long long>(finestSamples(area)), largestFinestError(a),
+        largestFinestError(area));
+      EXPECT_LE(finestSamples(a), budget);
+      EXPECT_LE(largestFinestError(a), largestFinestError(area) * (1.0 + 1e-12));
+      ASSERT_EQ(a.charts.size(), b.charts.size());
+      for (size_t c = 0; c < a.charts.size(); ++c)
+      {
+        EXPECT_GE(a.charts[c].maxLevel, options.minLevel);
+        EXPECT_LE(a.charts[c].maxLevel, options.maxLevel);
+        EXPECT_EQ(a.charts[c].maxLevel, b.charts[c].maxLevel) << "chart " << c;
+        EXPECT_EQ(a.charts[c].levelError, b.charts[c].levelError) << "chart " << c;
+      }
+      ASSERT_EQ(a.images.size(), b.images.size());
+      for (size_t k = 0; k < a.images.size(); ++k)
+      {
+        EXPECT_EQ(a.images[k].data, b.images[k].data) << "image " << k;
+      }
+    }
+  }
+  // The rule must be one of the two.
+  tc::GeometryImageOptions bad;
+  bad.levelRule = static_cast<tc::LevelRule>(7);
+  EXPECT_THROW(
+    tc::buildGeometryImages(skewed.patches, skewed.base, {}, {}, {}, bad), tc::InputError);
 }
 
 TEST(GeometryImages, FeatureSidesKeepOneSidedNormalsAndIdenticalPositions)

@@ -906,6 +906,66 @@ std::vector<int32_t> chooseLevels(
   return level;
 }
 
+/// d_max per chart by measured error: from minLevel everywhere, the charts whose levelError at
+/// their current level is largest rise one level while the rise fits the budget. Errors within
+/// `tolerance` of the largest count as a tie and rise together or not at all (as chooseLevels
+/// does for tied areas): congruent charts keep one d_max, and flat charts, whose errors are
+/// only float rounding, share the budget evenly instead of in the order of their noise. A chart
+/// at its cap (the last level measured) drops out; a group whose rise does not fit drops out
+/// and the next largest errors are tried, so what is left of the budget still goes to the
+/// worst charts that fit. With errors that fall with the level, every chart raised while the
+/// largest error is above the area rule's was below its area level, so its rise fitted: the
+/// largest error ends no higher than with the area rule (a feasible allocation below the caps).
+std::vector<int32_t> allocateByError(const std::vector<std::vector<double>>& levelError,
+  const GeometryImageOptions& o, int64_t budget, double tolerance)
+{
+  const int32_t n = static_cast<int32_t>(levelError.size());
+  std::vector<int32_t> level(n, o.minLevel);
+  int64_t total = n * gridSamples(o.minLevel);
+  using Entry = std::pair<double, int32_t>;
+  // Largest error on top; the lower id first on a tie, so the group is gathered in one order.
+  auto below = [](const Entry& a, const Entry& b)
+  { return a.first < b.first || (a.first == b.first && a.second > b.second); };
+  std::vector<Entry> heap;
+  heap.reserve(n);
+  for (int32_t c = 0; c < n; ++c)
+  {
+    heap.emplace_back(levelError[c][o.minLevel], c);
+  }
+  std::make_heap(heap.begin(), heap.end(), below);
+  std::vector<int32_t> group;
+  while (!heap.empty())
+  {
+    const double largest = heap.front().first;
+    group.clear();
+    int64_t cost = 0;
+    while (!heap.empty() && heap.front().first >= largest - tolerance)
+    {
+      std::pop_heap(heap.begin(), heap.end(), below);
+      const int32_t c = heap.back().second;
+      heap.pop_back();
+      const int32_t d = level[c];
+      if (d + 1 < static_cast<int32_t>(levelError[c].size()))
+      {
+        group.push_back(c);
+        cost += gridSamples(d + 1) - gridSamples(d);
+      }
+    }
+    if (total + cost > budget)
+    {
+      continue;
+    }
+    total += cost;
+    for (int32_t c : group)
+    {
+      ++level[c];
+      heap.emplace_back(levelError[c][level[c]], c);
+      std::push_heap(heap.begin(), heap.end(), below);
+    }
+  }
+  return level;
+}
+
 /// A rectangle of the packing: one chart pair (or a lone chart) in one image.
 struct PackUnit
 {
@@ -1012,6 +1072,11 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   if (!(options.curvatureWeight >= 0.0) || !std::isfinite(options.curvatureWeight))
   {
     throw InputError(where + "curvatureWeight must be finite and >= 0");
+  }
+  if (options.levelRule != LevelRule::Area && options.levelRule != LevelRule::Error)
+  {
+    throw InputError(where + "levelRule must be LevelRule::Area (0) or LevelRule::Error (1), not " +
+      num(static_cast<int32_t>(options.levelRule)));
   }
   if (options.sampleBudget < 0)
   {
@@ -1164,7 +1229,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     }
   }
 
-  // 2. d_max of every chart under the budget.
+  // 2. The budget and the area rule's d_max of every chart.
   const int64_t minimum = nc * gridSamples(options.minLevel);
   int64_t budget = options.sampleBudget;
   if (budget == 0)
@@ -1177,13 +1242,21 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       ", what " + num(nc) + " charts need at minLevel " + num(options.minLevel) +
       "; raise sampleBudget or lower minLevel");
   }
-  const std::vector<int32_t> level = chooseLevels(weightedArea, options, budget);
+  // The area rule's levels are the result (LevelRule::Area) or, raised by
+  // kErrorRuleLevelsAbove, the levels up to which the error rule measures each chart.
+  std::vector<int32_t> sampled = chooseLevels(weightedArea, options, budget);
+  if (options.levelRule == LevelRule::Error)
+  {
+    for (int32_t& d : sampled)
+    {
+      d = std::min(d + kErrorRuleLevelsAbove, options.maxLevel);
+    }
+  }
 
   atlas.charts.resize(nc);
   for (int32_t c = 0; c < nc; ++c)
   {
     AtlasChart& ch = atlas.charts[c];
-    ch.maxLevel = level[c];
     for (int k = 0; k < 3; ++k)
     {
       ch.cornerVertex[k] = patches.inputPointId[base.baseVertices[base.baseTriangles[3 * c + k]]];
@@ -1229,7 +1302,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     [&](int64_t e)
     {
       PathSamples& ps = paths[e];
-      ps.level = std::max(level[L.edgeChart[2 * e]], level[L.edgeChart[2 * e + 1]]);
+      ps.level = std::max(sampled[L.edgeChart[2 * e]], sampled[L.edgeChart[2 * e + 1]]);
       const int64_t q1 = int64_t(1) << ps.level;
       const int64_t p0 = patches.pathOffsets[e], p1 = patches.pathOffsets[e + 1];
       std::vector<double> arc(p1 - p0, 0.0);
@@ -1339,7 +1412,8 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     },
     progress.sub(0.45, 0.5), blockSteps(ne));
 
-  // 4. Every chart's finest grid, its error per level and its oriented bounding box.
+  // 4. Every chart's grid at its sampled level, its error per level and its oriented bounding
+  // box.
   std::vector<ChartGrid> grids(nc);
   parallel_for(
     nc,
@@ -1396,7 +1470,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       }
 
       ChartGrid& g = grids[c];
-      const int32_t dmax = ch.maxLevel;
+      const int32_t dmax = sampled[c];
       g.n = int64_t(1) << dmax;
       const int64_t n = g.n;
       g.values.assign(static_cast<size_t>(gridSamples(dmax)) * S.size, 0.0f);
@@ -1535,7 +1609,32 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     },
     progress.sub(0.5, 0.85), blockSteps(nc));
 
-  // 5. Packing (paper 5.2): charts sorted by d_max, each paired with the next closest one; one
+  // 5. d_max of every chart under the budget; level d of a chart is its sampled grid at stride
+  // 2^(sampled - d), whatever d_max is chosen.
+  std::vector<int32_t> level = sampled;
+  if (options.levelRule == LevelRule::Error)
+  {
+    std::vector<std::vector<double>> errors(nc);
+    for (int32_t c = 0; c < nc; ++c)
+    {
+      errors[c] = atlas.charts[c].levelError;
+    }
+    // Float samples round each coordinate by up to 6e-8 of its magnitude: errors closer than
+    // 1e-6 of the model's size (and of its distance from the origin) are not told apart.
+    double extent = 0.0;
+    for (double x : mesh.points)
+    {
+      extent = std::max(extent, std::abs(x));
+    }
+    level = allocateByError(errors, options, budget, 1e-6 * (diagonal + extent));
+  }
+  for (int32_t c = 0; c < nc; ++c)
+  {
+    atlas.charts[c].maxLevel = level[c];
+    atlas.charts[c].levelError.resize(static_cast<size_t>(level[c]) + 1);
+  }
+
+  // 6. Packing (paper 5.2): charts sorted by d_max, each paired with the next closest one; one
   // image per mip step, rectangles placed by a shelf packer.
   std::vector<int32_t> order(nc);
   std::iota(order.begin(), order.end(), 0);
@@ -1596,6 +1695,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       const ChartGrid& g = grids[c];
       for (int32_t k = 0; k <= ch.maxLevel; ++k)
       {
+        const int32_t shift = k + sampled[c] - ch.maxLevel;
         const int32_t d = ch.maxLevel - k;
         const int64_t nd = int64_t(1) << d;
         AtlasImage& image = atlas.images[k];
@@ -1603,8 +1703,8 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         {
           for (int64_t i = 0; i + j <= nd; ++i)
           {
-            // Level d is the finest grid at stride 2^k: the point-sampled pyramid.
-            const float* src = &g.values[gridIndex(g.n, i << k, j << k) * S.size];
+            // Level d is the sampled grid at stride 2^(sampled - d): the point-sampled pyramid.
+            const float* src = &g.values[gridIndex(g.n, i << shift, j << shift) * S.size];
             const std::array<int32_t, 2> xy =
               atlasTexel(ch, d, static_cast<int32_t>(i), static_cast<int32_t>(j));
             const size_t texel = static_cast<size_t>(xy[1]) * image.width + xy[0];
