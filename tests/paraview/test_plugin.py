@@ -8,13 +8,7 @@ from paraview.simple import LoadPlugin, OutputPort, UpdatePipeline
 
 plugin = os.environ["TRICHART_PLUGIN"]
 data = os.environ["TRICHART_TESTING_DATA"]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
+from pvcheck import check, failures  # noqa: E402  (beside this script)
 
 
 LoadPlugin(plugin, remote=False, ns=globals())
