@@ -802,7 +802,6 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   }
   tris.IBO->Bind();
   const size_t levels = std::min(in.list.levelStart.size(), in.gridTriangleStart.size()) - 1;
-  // gridCopies has one value per grid level.
   for (size_t n = 0; n < levels; ++n)
   {
     const int64_t first = in.list.levelStart[n];
