@@ -68,9 +68,11 @@ struct BufferTexture
   template <typename T>
   void Upload(const std::vector<T>& values, bool integer)
   {
-    // An empty buffer texture is not allowed; one zero texel stands in.
-    const std::vector<T> data = values.empty() ? std::vector<T>(4, T(0)) : values;
-    this->buffer->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
+    // An empty buffer texture is not allowed; one zero texel stands in. The values themselves
+    // go up uncopied: the draw list is uploaded every frame.
+    static const T zeros[4] = {};
+    this->buffer->Upload(values.empty() ? zeros : values.data(),
+      values.empty() ? 4 : values.size(), vtkOpenGLBufferObject::TextureBuffer);
     if (this->texture == 0)
     {
       glGenTextures(1, &this->texture);
@@ -297,7 +299,7 @@ void tcLODMapper::SetChartLevels(vtkIntArray* levels)
   {
     values.assign(levels->GetPointer(0), levels->GetPointer(0) + levels->GetNumberOfTuples());
   }
-  if (values != this->Internal->chartLevels || (levels == nullptr) != values.empty())
+  if (values != this->Internal->chartLevels)
   {
     this->Internal->chartLevels = values;
     this->Internal->haveSelection = false;
