@@ -67,6 +67,7 @@
 #include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
+#include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -74,7 +75,6 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
-#include <vtkPlaneSource.h>
 #include <vtkSphereSource.h>
 #include <vtkTable.h>
 #include <vtkTextActor.h>
@@ -705,6 +705,20 @@ QWidget* tcViewerWindow::BuildGeometryImagesPanel()
   this->CurvatureWeight->setToolTip(
     "Weight of |mean curvature| x diagonal in the area that sets each chart's level");
   form->addRow("CurvatureWeight", this->CurvatureWeight);
+  this->LevelRule = new QComboBox(w);
+  this->LevelRule->addItems({ "Area", "Error" }); // index = tcGeometryImages::LEVEL_RULE_*
+  this->LevelRule->setCurrentIndex(g->GetLevelRule());
+  this->LevelRule->setToolTip("How each chart's finest level is chosen under the budget: Area "
+                              "follows the curvature-weighted area (paper 5.2), Error the "
+                              "largest measured error");
+  form->addRow("LevelRule", this->LevelRule);
+  this->StretchIterations = new QSpinBox(w);
+  this->StretchIterations->setRange(
+    g->GetStretchIterationsMinValue(), g->GetStretchIterationsMaxValue());
+  this->StretchIterations->setValue(g->GetStretchIterations());
+  this->StretchIterations->setToolTip(
+    "Stretch-reducing passes over each chart's mean-value map; 0: Floater's map alone");
+  form->addRow("StretchIterations", this->StretchIterations);
   return w;
 }
 
@@ -850,6 +864,8 @@ void tcViewerWindow::PushParameters()
   this->GeometryImages->SetMinLevel(this->MinLevel->value());
   this->GeometryImages->SetMaxLevel(this->MaxLevel->value());
   this->GeometryImages->SetCurvatureWeight(this->CurvatureWeight->value());
+  this->GeometryImages->SetLevelRule(this->LevelRule->currentIndex());
+  this->GeometryImages->SetStretchIterations(this->StretchIterations->value());
   this->Reconstruction->SetLevel(this->Level->value());
 }
 

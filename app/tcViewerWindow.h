@@ -275,6 +275,8 @@ private:
   QSpinBox* MinLevel = nullptr;
   QSpinBox* MaxLevel = nullptr;
   QDoubleSpinBox* CurvatureWeight = nullptr;
+  QComboBox* LevelRule = nullptr;
+  QSpinBox* StretchIterations = nullptr;
   QSpinBox* Level = nullptr;
   QDoubleSpinBox* LODBias = nullptr;
   QDoubleSpinBox* ErrorTarget = nullptr;

@@ -27,6 +27,7 @@ tcGeometryImages::tcGeometryImages()
   this->MaxLevel = defaults.maxLevel;
   this->CurvatureWeight = defaults.curvatureWeight;
   this->LevelRule = static_cast<int>(defaults.levelRule);
+  this->StretchIterations = defaults.stretchIterations;
 }
 
 tcGeometryImages::~tcGeometryImages() = default;
@@ -117,6 +118,7 @@ int tcGeometryImages::RequestData(
   options.curvatureWeight = this->CurvatureWeight;
   options.levelRule =
     this->LevelRule == LEVEL_RULE_AREA ? tc::LevelRule::Area : tc::LevelRule::Error;
+  options.stretchIterations = this->StretchIterations;
   tc::Atlas atlas;
   try
   {
@@ -144,6 +146,7 @@ void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "LevelRule: " << (this->LevelRule == LEVEL_RULE_AREA ? "Area" : "Error") << "\n";
+  os << indent << "StretchIterations: " << this->StretchIterations << "\n";
   os << indent << "ResampledArrays:";
   for (const std::string& name : this->ResampledArrays)
   {

@@ -5,7 +5,8 @@
  * packs them in pairs into one atlas (Feng et al. 2010, section 5.2).
  *
  * Each patch is parameterized onto a right triangle (Floater's mean-value coordinates, its
- * three paths fixed on the sides by arc length) and resampled on grids of 2^d + 1 samples per
+ * three paths fixed on the sides by arc length, then reweighted to lower its stretch, see
+ * SetStretchIterations) and resampled on grids of 2^d + 1 samples per
  * side for d = 0 .. d_max, d_max following the patch's curvature-weighted area under a total
  * sample budget (or by measured error under it, see SetLevelRule). Shared sides are sampled once
  * along their path, so neighbouring charts hold bit-identical samples there and stitch without
@@ -70,6 +71,14 @@ public:
   ///@}
 
   ///@{
+  /// Stretch-reducing passes over each patch's mean-value map (Yoshizawa et al. 2004), 0 .. 100;
+  /// 0 keeps Floater's map alone. Passes stop once the L2 stretch no longer falls. They spread
+  /// the samples over protrusions that the mean-value map squeezes (default 10).
+  vtkSetClampMacro(StretchIterations, int, 0, 100);
+  vtkGetMacro(StretchIterations, int);
+  ///@}
+
+  ///@{
   /// Point arrays of the input to resample into the atlas besides Position and Normal.
   void AddResampledArray(const char* name);
   void ClearResampledArrays();
@@ -91,6 +100,7 @@ private:
   int MaxLevel = 8;
   double CurvatureWeight = 1.0;
   int LevelRule = LEVEL_RULE_ERROR;
+  int StretchIterations = 10;
   std::vector<std::string> ResampledArrays;
 };
 

@@ -160,7 +160,8 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     chart table and one image per mip step).
 
     Options: sample_budget, min_level, max_level, curvature_weight, level_rule (0: by
-    curvature-weighted area, 1: by measured error, the default).
+    curvature-weighted area, 1: by measured error, the default), stretch_iterations
+    (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone).
     """
     f = _configure(TriChartGeometryImages.tcGeometryImages(), options)
     for name in resampled_arrays:

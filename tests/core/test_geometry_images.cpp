@@ -1086,6 +1086,97 @@ TEST(GeometryImages, ErrorRuleGivesACurvedRegionFinerLevelsThanAreaAlone)
   EXPECT_LT(largestFinestError(byError), 0.75 * largestFinestError(byArea));
 }
 
+/// The cube with a narrow spike 0.8 high on chart 2, the top triangle (0,0,1), (1,0,1), (1,1,1),
+/// centred on its centroid: a protrusion that the mean-value map squeezes.
+Synthetic spikedCube(int n)
+{
+  Synthetic s = cube(n);
+  std::vector<double>& x = s.patches.mesh.points;
+  for (size_t v = 0; v + 2 < x.size(); v += 3)
+  {
+    if (x[v + 2] == 1.0)
+    {
+      const double dx = x[v] - 2.0 / 3.0, dy = x[v + 1] - 1.0 / 3.0;
+      x[v + 2] += 0.8 * std::exp(-(dx * dx + dy * dy) / (0.06 * 0.06));
+    }
+  }
+  return s;
+}
+
+TEST(GeometryImages, StretchReductionSpreadsSamplesOverASpike)
+{
+  const Synthetic s = spikedCube(48);
+  tc::GeometryImageOptions floater;
+  floater.stretchIterations = 0;
+  const tc::GeometryImageOptions reduced;
+  ASSERT_GT(reduced.stretchIterations, 0) << "stretch reduction is the default";
+  const tc::PatchParameterization a = tc::parameterizePatch(s.patches, s.base, 2, floater);
+  const tc::PatchParameterization b = tc::parameterizePatch(s.patches, s.base, 2, reduced);
+  EXPECT_EQ(a.stretchIterations, 0);
+  EXPECT_EQ(a.stretch, a.meanValueStretch);
+  EXPECT_EQ(b.meanValueStretch, a.meanValueStretch);
+  EXPECT_GE(b.stretchIterations, 1);
+  EXPECT_LE(b.stretchIterations, reduced.stretchIterations);
+  EXPECT_EQ(b.flippedTriangles, 0);
+  EXPECT_EQ(b.degenerateTriangles, 0);
+  // The boundary stays where Floater's map put it (arc length); only the interior moves.
+  for (size_t l = 0; l < a.points.size(); ++l)
+  {
+    const double u = a.uv[2 * l], v = a.uv[2 * l + 1];
+    if (u == 0.0 || v == 0.0 || u + v == 1.0)
+    {
+      EXPECT_EQ(b.uv[2 * l], u);
+      EXPECT_EQ(b.uv[2 * l + 1], v);
+    }
+  }
+  // Share of the triangle's parameter area given to the spike (points above z = 1.1).
+  auto spikeShare = [&s](const tc::PatchParameterization& p)
+  {
+    double spike = 0.0;
+    for (size_t t = 0; t < p.triangles.size() / 3; ++t)
+    {
+      const int32_t* c = &p.triangles[3 * t];
+      const double* q0 = &p.uv[2 * c[0]];
+      const double* q1 = &p.uv[2 * c[1]];
+      const double* q2 = &p.uv[2 * c[2]];
+      const double area =
+        0.5 * ((q1[0] - q0[0]) * (q2[1] - q0[1]) - (q2[0] - q0[0]) * (q1[1] - q0[1]));
+      bool high = true;
+      for (int k = 0; k < 3; ++k)
+      {
+        high = high && s.patches.mesh.point(p.points[c[k]])[2] > 1.1;
+      }
+      spike += high ? area : 0.0;
+    }
+    return spike / 0.5;
+  };
+  // The same budget for both atlases: level 5 on every chart.
+  floater.sampleBudget = 12 * samplesAt(5);
+  tc::GeometryImageOptions reducedBudget = reduced;
+  reducedBudget.sampleBudget = floater.sampleBudget;
+  const tc::Atlas byFloater = tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, floater);
+  const tc::Atlas byReduced = tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, reducedBudget);
+  expectAtlasInvariants(byReduced);
+  const tc::AtlasChart& f = byFloater.charts[2];
+  const tc::AtlasChart& r = byReduced.charts[2];
+  const int32_t d = std::min(f.maxLevel, r.maxLevel);
+  std::printf("[          ] spike chart: L2 stretch %.3f -> %.3f after %d passes; parameter area "
+              "of the spike %.4f -> %.4f; levelError at level %d %.4f -> %.4f; largest finest "
+              "levelError %.4f -> %.4f\n",
+    a.stretch, b.stretch, b.stretchIterations, spikeShare(a), spikeShare(b), d,
+    f.levelError[static_cast<size_t>(d)], r.levelError[static_cast<size_t>(d)],
+    largestFinestError(byFloater), largestFinestError(byReduced));
+  EXPECT_LT(b.stretch, 0.8 * a.stretch);
+  EXPECT_GT(spikeShare(b), 2.0 * spikeShare(a));
+  EXPECT_LT(r.levelError[static_cast<size_t>(d)], 0.7 * f.levelError[static_cast<size_t>(d)]);
+  EXPECT_LT(largestFinestError(byReduced), largestFinestError(byFloater));
+  // Flat charts keep their affine map: the same error (float rounding) either way.
+  for (int32_t c : { 0, 1, 4, 5 })
+  {
+    EXPECT_LT(byReduced.charts[c].levelError.back(), 1e-6) << "flat chart " << c;
+  }
+}
+
 TEST(GeometryImages, ErrorRuleRespectsTheBudgetAndIsDeterministic)
 {
   const Synthetic skewed = sphere(12, 60.0);
@@ -1565,4 +1656,11 @@ TEST(GeometryImages, RejectsInputThatDoesNotMatchOrIsNotAPatchDisk)
   options.maxLevel = 13;
   EXPECT_THROW(tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, options), tc::InputError);
   EXPECT_THROW(tc::parameterizePatch(s.patches, s.base, 8), tc::InputError);
+  {
+    tc::GeometryImageOptions bad;
+    bad.stretchIterations = -1;
+    EXPECT_THROW(tc::parameterizePatch(s.patches, s.base, 0, bad), tc::InputError);
+    bad.stretchIterations = 101;
+    EXPECT_THROW(tc::buildGeometryImages(s.patches, s.base, {}, {}, {}, bad), tc::InputError);
+  }
 }

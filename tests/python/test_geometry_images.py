@@ -72,6 +72,36 @@ def test_error_falls_as_the_level_rises(bunny):
     assert errors[2] < 0.005
 
 
+def test_stretch_reduction_lowers_the_error_of_the_mean_value_map(bunny):
+    # The same patches and budget: Floater's map alone, then the default stretch-reducing
+    # passes. The budget goes to the largest measured error either way, so the worst chart
+    # error stays about the same (0.2258 mesh units on this bunny, measured); the samples are
+    # spread more evenly over the surface, so the RMS error of the finest rebuild falls.
+    floater = trichart.geometry_images(bunny["patches"], stretch_iterations=0)
+    reduced = trichart.geometry_images(bunny["patches"])
+
+    def figures(atlas):
+        charts = trichart.atlas_charts(atlas)
+        error = charts.GetColumnByName("LevelError")
+        top = charts.GetColumnByName("MaxLevel")
+        worst = max(error.GetComponent(c, top.GetValue(c)) for c in range(charts.GetNumberOfRows()))
+        _, f = trichart.surface_distance(trichart.rebuild(atlas), bunny["clean"])
+        return worst, f["rms"]
+
+    worst_floater, rms_floater = figures(floater)
+    worst_reduced, rms_reduced = figures(reduced)
+    print(f"finest: largest chart levelError {worst_floater:.5f} -> {worst_reduced:.5f}, "
+          f"RMS {rms_floater:.6f} -> {rms_reduced:.6f}")
+    assert worst_reduced < 1.01 * worst_floater
+    assert rms_reduced < 0.97 * rms_floater
+    images = trichart.pipeline.TriChartGeometryImages.tcGeometryImages()
+    assert images.GetStretchIterations() == 10
+    images.SetStretchIterations(-1)
+    assert images.GetStretchIterations() == 0
+    images.SetStretchIterations(1000)
+    assert images.GetStretchIterations() == 100
+
+
 def test_missing_or_foreign_atlas_files_are_refused(tmp_path, testing_data):
     with pytest.raises(TriChartError, match="nothing.exr"):
         trichart.read_atlas(tmp_path / "nothing.exr")

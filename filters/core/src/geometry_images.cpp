@@ -15,6 +15,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 // The mean-value system is assembled and solved by hand on Eigen (one SparseLU per patch)
@@ -37,6 +38,7 @@ using Vec3 = Eigen::Vector3d;
 
 constexpr int32_t kMaxLevelLimit = 12;
 constexpr int32_t kMaxComponents = 64;
+constexpr int32_t kMaxStretchIterations = 100;
 // Angles within this of pi are clamped before tan(angle / 2) (a flat triangle would give an
 // infinite mean-value weight).
 constexpr double kMaxAngle = 3.14159265358979323846 - 1e-6;
@@ -332,8 +334,76 @@ double tanHalfAngle(const Vec3& e1, const Vec3& e2)
   return std::tan(std::min(angle, kMaxAngle) / 2.0);
 }
 
-PatchParameterization parameterize(
-  const PatchMesh& pm, const BaseComplexResult& base, const Layout& L, int32_t c)
+/// Sander et al.'s L2 stretch of the map from uv to 3-D over one patch triangle, squared
+/// ((Gamma^2 + gamma^2) / 2 of its Jacobian), and the triangle's 3-D area; a uv triangle of no
+/// area counts as infinitely stretched.
+std::pair<double, double> triangleStretch2(
+  const TriMesh& mesh, const PatchParameterization& p, int64_t t)
+{
+  const int32_t* c = &p.triangles[3 * t];
+  const double* a = &p.uv[2 * c[0]];
+  const double* b = &p.uv[2 * c[1]];
+  const double* q = &p.uv[2 * c[2]];
+  const Vec3 x0 = pointOf(mesh, p.points[c[0]]);
+  const Vec3 x1 = pointOf(mesh, p.points[c[1]]);
+  const Vec3 x2 = pointOf(mesh, p.points[c[2]]);
+  const double area3 = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+  const double area2 = (b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1]);
+  if (!(area2 > 0.0))
+  {
+    return { std::numeric_limits<double>::infinity(), area3 };
+  }
+  const Vec3 ss = (x0 * (b[1] - q[1]) + x1 * (q[1] - a[1]) + x2 * (a[1] - b[1])) / area2;
+  const Vec3 st = (x0 * (q[0] - b[0]) + x1 * (a[0] - q[0]) + x2 * (b[0] - a[0])) / area2;
+  return { 0.5 * (ss.squaredNorm() + st.squaredNorm()), area3 };
+}
+
+/// The area-weighted L2 stretch of the whole patch (infinite if a triangle has no uv area).
+double l2Stretch(const TriMesh& mesh, const PatchParameterization& p)
+{
+  double sum = 0.0, area = 0.0;
+  for (int64_t t = 0; t < static_cast<int64_t>(p.triangles.size() / 3); ++t)
+  {
+    const auto [s2, a3] = triangleStretch2(mesh, p, t);
+    if (a3 > 0.0)
+    {
+      sum += s2 * a3;
+      area += a3;
+    }
+  }
+  return area > 0.0 ? std::sqrt(sum / area) : 0.0;
+}
+
+/// Per point, the L2 stretch of its triangles (area-weighted), normalized by the patch's, and
+/// clamped to [1e-3, 1e3] so that one sliver cannot make a weight vanish or explode.
+void vertexStretch(const TriMesh& mesh, const PatchParameterization& p, std::vector<double>& sigma)
+{
+  const size_t np = p.points.size();
+  std::vector<double> sum(np, 0.0), area(np, 0.0);
+  double total = 0.0, totalArea = 0.0;
+  for (int64_t t = 0; t < static_cast<int64_t>(p.triangles.size() / 3); ++t)
+  {
+    auto [s2, a3] = triangleStretch2(mesh, p, t);
+    s2 = std::min(s2, 1e300);
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[p.triangles[3 * t + k]] += s2 * a3;
+      area[p.triangles[3 * t + k]] += a3;
+    }
+    total += s2 * a3;
+    totalArea += a3;
+  }
+  const double mean = totalArea > 0.0 && total > 0.0 ? std::sqrt(total / totalArea) : 1.0;
+  sigma.resize(np);
+  for (size_t v = 0; v < np; ++v)
+  {
+    const double s = area[v] > 0.0 ? std::sqrt(sum[v] / area[v]) / mean : 1.0;
+    sigma[v] = std::clamp(std::isfinite(s) ? s : 1e3, 1e-3, 1e3);
+  }
+}
+
+PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult& base,
+  const Layout& L, int32_t c, int32_t stretchIterations)
 {
   const std::string where = "geometry images: patch " + num(c) + " ";
   const TriMesh& mesh = pm.mesh;
@@ -531,44 +601,85 @@ PatchParameterization parameterize(
         en.w = 1.0;
       }
     }
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(entries.size() + nu);
-    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(nu, 2);
-    for (const Entry& en : entries)
-    {
-      triplets.emplace_back(en.row, en.row, en.w);
-      if (unknown[en.col] >= 0)
-      {
-        triplets.emplace_back(en.row, unknown[en.col], -en.w);
-      }
-      else
-      {
-        rhs(en.row, 0) += en.w * p.uv[2 * en.col];
-        rhs(en.row, 1) += en.w * p.uv[2 * en.col + 1];
-      }
-    }
-    Eigen::SparseMatrix<double> A(nu, nu);
-    A.setFromTriplets(triplets.begin(), triplets.end());
+    // One solve of the convex-combination system with the current weights; the pattern is
+    // the same for every weight set, so it is analysed once.
     Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-    lu.compute(A);
-    if (lu.info() != Eigen::Success)
+    bool analysed = false;
+    auto solve = [&]()
     {
-      throw InputError(where + "gives a singular mean-value system (" + lu.lastErrorMessage() +
-        "); check that the patch is a disk of non-degenerate triangles");
-    }
-    const Eigen::MatrixX2d uv = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !uv.allFinite())
-    {
-      throw InputError(where + "gives a mean-value system that could not be solved; check that " +
-        "the patch is a disk of non-degenerate triangles");
-    }
-    for (int32_t v = 0; v < np; ++v)
-    {
-      if (unknown[v] >= 0)
+      std::vector<Eigen::Triplet<double>> triplets;
+      triplets.reserve(entries.size() + nu);
+      Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(nu, 2);
+      for (const Entry& en : entries)
       {
-        p.uv[2 * v] = uv(unknown[v], 0);
-        p.uv[2 * v + 1] = uv(unknown[v], 1);
+        triplets.emplace_back(en.row, en.row, en.w);
+        if (unknown[en.col] >= 0)
+        {
+          triplets.emplace_back(en.row, unknown[en.col], -en.w);
+        }
+        else
+        {
+          rhs(en.row, 0) += en.w * p.uv[2 * en.col];
+          rhs(en.row, 1) += en.w * p.uv[2 * en.col + 1];
+        }
       }
+      Eigen::SparseMatrix<double> A(nu, nu);
+      A.setFromTriplets(triplets.begin(), triplets.end());
+      if (!analysed)
+      {
+        lu.analyzePattern(A);
+        analysed = true;
+      }
+      lu.factorize(A);
+      if (lu.info() != Eigen::Success)
+      {
+        throw InputError(where + "gives a singular mean-value system (" + lu.lastErrorMessage() +
+          "); check that the patch is a disk of non-degenerate triangles");
+      }
+      const Eigen::MatrixX2d uv = lu.solve(rhs);
+      if (lu.info() != Eigen::Success || !uv.allFinite())
+      {
+        throw InputError(where + "gives a mean-value system that could not be solved; check " +
+          "that the patch is a disk of non-degenerate triangles");
+      }
+      for (int32_t v = 0; v < np; ++v)
+      {
+        if (unknown[v] >= 0)
+        {
+          p.uv[2 * v] = uv(unknown[v], 0);
+          p.uv[2 * v + 1] = uv(unknown[v], 1);
+        }
+      }
+    };
+    solve();
+    p.meanValueStretch = p.stretch = l2Stretch(mesh, p);
+    // Stretch reduction (Yoshizawa, Belyaev and Seidel 2004): divide each weight w_ij by the
+    // L2 stretch of neighbour j and solve again, keeping the best map. The weights stay
+    // positive, so every map is still a convex combination with a convex border (Tutte and
+    // Floater: no flip); samples move from squeezed regions (a protrusion that the mean-value
+    // map shrinks to a speck) to where the surface is.
+    if (stretchIterations > 0)
+    {
+      std::vector<double> best = p.uv;
+      std::vector<double> sigma;
+      for (int32_t it = 0; it < stretchIterations; ++it)
+      {
+        vertexStretch(mesh, p, sigma);
+        for (Entry& en : entries)
+        {
+          en.w /= sigma[en.col];
+        }
+        solve();
+        const double s = l2Stretch(mesh, p);
+        if (!(s < p.stretch))
+        {
+          break;
+        }
+        p.stretch = s;
+        best = p.uv;
+        ++p.stretchIterations;
+      }
+      p.uv = std::move(best);
     }
   }
 
@@ -1042,24 +1153,8 @@ void packImage(const std::vector<PackUnit>& units, const std::vector<int32_t>& l
   corner.assign(units.size(), { -1, -1 });
   shelves(width, &corner);
 }
-} // namespace
-
-PatchParameterization parameterizePatch(
-  const PatchMesh& patches, const BaseComplexResult& base, int32_t patch)
-{
-  const Layout L = checkInput(patches, base);
-  if (patch < 0 || patch >= L.numCharts)
-  {
-    throw InputError("geometry images: patch " + num(patch) + " does not exist (0 .. " +
-      num(L.numCharts - 1) + ")");
-  }
-  return parameterize(patches, base, L, patch);
-}
-
-Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& base,
-  const std::vector<double>& normals, const std::vector<double>& meanCurvature,
-  const std::vector<GeometryImageAttribute>& extra, const GeometryImageOptions& options,
-  const Progress& progress)
+/// Refuses options out of range, saying which and what is allowed.
+void checkOptions(const GeometryImageOptions& options)
 {
   const std::string where = "geometry images: ";
   if (options.minLevel < 0 || options.maxLevel > kMaxLevelLimit ||
@@ -1078,10 +1173,39 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     throw InputError(where + "levelRule must be LevelRule::Area (0) or LevelRule::Error (1), not " +
       num(static_cast<int32_t>(options.levelRule)));
   }
+  if (options.stretchIterations < 0 || options.stretchIterations > kMaxStretchIterations)
+  {
+    throw InputError(where + "stretchIterations must be 0 .. " + num(kMaxStretchIterations) +
+      " (0: Floater's mean-value map alone), not " + num(options.stretchIterations));
+  }
   if (options.sampleBudget < 0)
   {
     throw InputError(where + "sampleBudget must be >= 0 (0: as many samples as input points)");
   }
+}
+
+} // namespace
+
+PatchParameterization parameterizePatch(const PatchMesh& patches, const BaseComplexResult& base,
+  int32_t patch, const GeometryImageOptions& options)
+{
+  checkOptions(options);
+  const Layout L = checkInput(patches, base);
+  if (patch < 0 || patch >= L.numCharts)
+  {
+    throw InputError("geometry images: patch " + num(patch) + " does not exist (0 .. " +
+      num(L.numCharts - 1) + ")");
+  }
+  return parameterize(patches, base, L, patch, options.stretchIterations);
+}
+
+Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& base,
+  const std::vector<double>& normals, const std::vector<double>& meanCurvature,
+  const std::vector<GeometryImageAttribute>& extra, const GeometryImageOptions& options,
+  const Progress& progress)
+{
+  const std::string where = "geometry images: ";
+  checkOptions(options);
   const Layout L = checkInput(patches, base);
   const TriMesh& mesh = patches.mesh;
   const int64_t nv = L.numPoints;
@@ -1194,7 +1318,8 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     {
       try
       {
-        param[c] = parameterize(patches, base, L, static_cast<int32_t>(c));
+        param[c] =
+          parameterize(patches, base, L, static_cast<int32_t>(c), options.stretchIterations);
       }
       catch (const InputError& e)
       {
@@ -1599,7 +1724,6 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
         ch.levelError[d] = worst;
       }
-
       std::vector<Vec3> pts(np);
       for (int32_t v = 0; v < np; ++v)
       {

@@ -2,7 +2,8 @@
 /// @file geometry_images.h
 /// Triangular geometry images (Feng et al. 2010, section 5.2): every patch of a PatchMesh is
 /// parameterized onto the right triangle (0,0), (1,0), (0,1) with Floater's mean-value
-/// coordinates, its boundary fixed by arc length along the three paths; the parameterization is
+/// coordinates, its boundary fixed by arc length along the three paths, then reweighted to lower
+/// its L2 stretch (see GeometryImageOptions::stretchIterations); the parameterization is
 /// resampled on a (2^d + 1)-per-side triangular grid for every level d <= d_max; charts are
 /// packed in pairs into (2^dh + 2) x (2^dh + 1) rectangles of one image per mip step. The result
 /// is a tc::Atlas (tc/atlas.h) that keeps every invariant listed there.
@@ -89,6 +90,13 @@ struct GeometryImageOptions
   /// also sets the error rule's caps, through the area rule's levels.
   double curvatureWeight = 1.0;
   LevelRule levelRule = LevelRule::Error; ///< how d_max is chosen under the budget
+  /// Stretch-reducing passes over each chart's mean-value map (Yoshizawa, Belyaev and Seidel
+  /// 2004), 0 .. 100; 0 keeps Floater's map alone. Each pass divides the weight of every
+  /// neighbour j by the L2 stretch (Sander et al. 2001) around j and solves again; passes stop
+  /// when the chart's L2 stretch no longer falls, and the lowest map is kept. Weights stay
+  /// positive, so every map is a convex combination (no flip). A protrusion that the mean-value
+  /// map shrinks to a speck of the triangle gets grid samples in proportion to its area instead.
+  int32_t stretchIterations = 10;
 };
 
 /// A point array to resample into the atlas besides Position and Normal.
@@ -99,7 +107,7 @@ struct GeometryImageAttribute
   std::vector<double> values; ///< #V' x components over the points of PatchMesh::mesh
 };
 
-/// The mean-value parameterization of one patch onto the right triangle.
+/// The parameterization of one patch onto the right triangle.
 struct PatchParameterization
 {
   std::vector<int32_t> points;        ///< #Vp points of PatchMesh::mesh in the patch, ascending
@@ -112,15 +120,19 @@ struct PatchParameterization
   /// when a patch triangle has all its corners on one path (Floater's theorem needs no such
   /// triangle for a strict embedding; these are flattened onto the side, never flipped).
   int64_t degenerateTriangles = 0;
+  double meanValueStretch = 0.0; ///< L2 stretch of Floater's mean-value map
+  double stretch = 0.0;          ///< L2 stretch of the map kept
+  int32_t stretchIterations = 0; ///< stretch-reducing passes that lowered it
 };
 
 /// Parameterizes patch `patch` (= base face) alone: corner k of the base face at (0,0), (1,0),
 /// (0,1) for k = 0, 1, 2, each path fixed on its side by arc length, the interior by Floater's
-/// mean-value coordinates (one sparse LU solve).
+/// mean-value coordinates (one sparse LU solve), then options.stretchIterations stretch-reducing
+/// passes (the other options are only checked).
 /// @throws InputError when the arrays do not match, or the patch is not a disk bounded by the
 ///         three paths of its sides (the message names the patch)
-PatchParameterization parameterizePatch(
-  const PatchMesh& patches, const BaseComplexResult& base, int32_t patch);
+PatchParameterization parameterizePatch(const PatchMesh& patches, const BaseComplexResult& base,
+  int32_t patch, const GeometryImageOptions& options = {});
 
 /// Builds the atlas of triangular geometry images.
 /// @param[in] patches        the input split into patches along the traced paths
