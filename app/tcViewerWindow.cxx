@@ -652,6 +652,19 @@ QWidget* tcViewerWindow::BuildRefinementPanel()
   form->addRow("CornerRings", this->CornerRings);
   this->CornerFraction = fraction(this->Refinement->GetCornerFraction());
   form->addRow("CornerFraction", this->CornerFraction);
+  this->StraightenLines = new QCheckBox(w);
+  this->StraightenLines->setChecked(this->Refinement->GetStraightenLines());
+  this->StraightenLines->setToolTip("Straighten one-face zig-zags of the boundaries");
+  form->addRow("StraightenLines", this->StraightenLines);
+  this->CreaseAngle = new QDoubleSpinBox(w);
+  this->CreaseAngle->setRange(
+    this->Refinement->GetCreaseAngleMinValue(), this->Refinement->GetCreaseAngleMaxValue());
+  this->CreaseAngle->setSingleStep(5.0);
+  this->CreaseAngle->setValue(this->Refinement->GetCreaseAngle());
+  this->CreaseAngle->setToolTip(
+    "Dihedral angle (degrees) of a crease edge, which straightening never trades for a "
+    "smoother one");
+  form->addRow("CreaseAngle", this->CreaseAngle);
   return w;
 }
 
@@ -858,6 +871,8 @@ void tcViewerWindow::PushParameters()
   this->Refinement->SetCurvatureThresholdScale(this->CurvatureThresholdScale->value());
   this->Refinement->SetCornerRings(this->CornerRings->value());
   this->Refinement->SetCornerFraction(this->CornerFraction->value());
+  this->Refinement->SetStraightenLines(this->StraightenLines->isChecked());
+  this->Refinement->SetCreaseAngle(this->CreaseAngle->value());
   this->BaseComplex->SetTargetFaces(this->TargetFaces->value());
   this->BaseComplex->SetMaxError(this->MaxError->value());
   this->GeometryImages->SetSampleBudget(this->SampleBudget->value());

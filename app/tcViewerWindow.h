@@ -269,6 +269,8 @@ private:
   QDoubleSpinBox* CurvatureThresholdScale = nullptr;
   QSpinBox* CornerRings = nullptr;
   QDoubleSpinBox* CornerFraction = nullptr;
+  QCheckBox* StraightenLines = nullptr;
+  QDoubleSpinBox* CreaseAngle = nullptr;
   QSpinBox* TargetFaces = nullptr;
   QDoubleSpinBox* MaxError = nullptr;
   QSpinBox* SampleBudget = nullptr;

@@ -29,6 +29,8 @@ tcFeatureRefinement::tcFeatureRefinement()
   this->CutPasses = defaults.cutPasses;
   this->DihedralWeight = defaults.dihedralWeight;
   this->JunctionCorners = defaults.junctionCorners;
+  this->StraightenLines = defaults.straightenLines;
+  this->CreaseAngle = defaults.creaseAngle;
   this->CornerRings = defaults.cornerRings;
   this->CornerFraction = defaults.cornerFraction;
   this->SetNumberOfOutputPorts(3);
@@ -82,6 +84,8 @@ int tcFeatureRefinement::RequestData(
   options.cutPasses = this->CutPasses;
   options.dihedralWeight = this->DihedralWeight;
   options.junctionCorners = this->JunctionCorners;
+  options.straightenLines = this->StraightenLines;
+  options.creaseAngle = this->CreaseAngle;
   options.cornerRings = this->CornerRings;
   options.cornerFraction = this->CornerFraction;
   tc::FeatureRefinementResult result;
@@ -143,6 +147,8 @@ void tcFeatureRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CutPasses: " << this->CutPasses << "\n";
   os << indent << "DihedralWeight: " << this->DihedralWeight << "\n";
   os << indent << "JunctionCorners: " << this->JunctionCorners << "\n";
+  os << indent << "StraightenLines: " << this->StraightenLines << "\n";
+  os << indent << "CreaseAngle: " << this->CreaseAngle << "\n";
   os << indent << "CornerRings: " << this->CornerRings << "\n";
   os << indent << "CornerFraction: " << this->CornerFraction << "\n";
 }

@@ -80,6 +80,21 @@ public:
   ///@}
 
   ///@{
+  /// One-face zig-zags of the cut boundaries are straightened (the boundary takes the face's
+  /// third side), so that the base complex can simplify feature lines along themselves.
+  vtkSetMacro(StraightenLines, bool);
+  vtkGetMacro(StraightenLines, bool);
+  vtkBooleanMacro(StraightenLines, bool);
+  ///@}
+
+  ///@{
+  /// Dihedral angle (degrees) from which an edge is a crease: StraightenLines never trades a
+  /// crease edge for a smoother one.
+  vtkSetClampMacro(CreaseAngle, double, 0.0, 180.0);
+  vtkGetMacro(CreaseAngle, double);
+  ///@}
+
+  ///@{
   /// Vertices where three or more feature lines meet are corners too.
   vtkSetMacro(JunctionCorners, bool);
   vtkGetMacro(JunctionCorners, bool);
@@ -117,6 +132,8 @@ private:
   int CutPasses;
   double DihedralWeight;
   bool JunctionCorners;
+  bool StraightenLines;
+  double CreaseAngle;
   int CornerRings;
   double CornerFraction;
 };

@@ -119,7 +119,9 @@ def refine_features(clusters, progress=None, **options):
     and CornerVertex, feature lines, corners).
 
     Options: band_fraction, crest_beta, curvature_top_fraction, curvature_threshold_scale,
-    corner_rings, corner_fraction.
+    corner_rings, corner_fraction, band_rings, cut_passes, dihedral_weight, junction_corners,
+    straighten_lines (straighten one-face zig-zags of the boundaries, default True),
+    crease_angle (degrees; straightening never trades a crease edge for a smoother one).
     """
     f = _configure(TriChartFeatures.tcFeatureRefinement(), options)
     f.SetInputData(clusters)

@@ -24,6 +24,7 @@ namespace tc
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
 
 double distance(const TriMesh& mesh, int64_t a, int64_t b)
 {
@@ -320,6 +321,46 @@ Band buildBand(const TriMesh& mesh, const EdgeTable& edges, const DualGraph& dua
 using DualCapacity = std::vector<double>;
 
 /// Eq. 4 for every entry of the dual graph (see FeatureRefinementOptions::dihedralWeight).
+/// The angle between the normals of the two faces of every manifold edge, in radians (0 on
+/// other edges).
+std::vector<double> edgeDihedrals(const TriMesh& mesh, const EdgeTable& edges)
+{
+  const int64_t nf = mesh.numTriangles();
+  std::vector<double> normal(3 * nf);
+  parallel_for(nf,
+    [&](int64_t f)
+    {
+      const int32_t* t = &mesh.triangles[3 * f];
+      double u[3], v[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        u[c] = mesh.points[3 * t[1] + c] - mesh.points[3 * t[0] + c];
+        v[c] = mesh.points[3 * t[2] + c] - mesh.points[3 * t[0] + c];
+      }
+      const double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0] };
+      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int c = 0; c < 3; ++c)
+      {
+        normal[3 * f + c] = l > 0.0 ? n[c] / l : 0.0;
+      }
+    });
+  const int64_t ne = edges.numEdges();
+  std::vector<double> dihedral(ne, 0.0);
+  parallel_for(ne,
+    [&](int64_t e)
+    {
+      if (edges.valence(e) == 2)
+      {
+        const double* n0 = &normal[3 * edges.edgeFaces[edges.faceOffsets[e]]];
+        const double* n1 = &normal[3 * edges.edgeFaces[edges.faceOffsets[e] + 1]];
+        dihedral[e] =
+          std::acos(std::clamp(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2], -1.0, 1.0));
+      }
+    });
+  return dihedral;
+}
+
 DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const DualGraph& dual,
   const std::vector<double>& faceMeanCurvature, const std::vector<uint8_t>& crestVertex,
   const FeatureRefinementOptions& options, const Progress& progress)
@@ -342,38 +383,8 @@ DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const Dua
   double inverseSigmaTheta = 0.0;
   if (options.dihedralWeight > 0.0)
   {
-    std::vector<double> normal(3 * nf);
-    parallel_for(nf,
-      [&](int64_t f)
-      {
-        const int32_t* t = &mesh.triangles[3 * f];
-        double u[3], v[3];
-        for (int c = 0; c < 3; ++c)
-        {
-          u[c] = mesh.points[3 * t[1] + c] - mesh.points[3 * t[0] + c];
-          v[c] = mesh.points[3 * t[2] + c] - mesh.points[3 * t[0] + c];
-        }
-        const double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-          u[0] * v[1] - u[1] * v[0] };
-        const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int c = 0; c < 3; ++c)
-        {
-          normal[3 * f + c] = l > 0.0 ? n[c] / l : 0.0;
-        }
-      });
+    dihedral = edgeDihedrals(mesh, edges);
     const int64_t ne = edges.numEdges();
-    dihedral.assign(ne, 0.0);
-    parallel_for(ne,
-      [&](int64_t e)
-      {
-        if (edges.valence(e) == 2)
-        {
-          const double* n0 = &normal[3 * edges.edgeFaces[edges.faceOffsets[e]]];
-          const double* n1 = &normal[3 * edges.edgeFaces[edges.faceOffsets[e] + 1]];
-          dihedral[e] =
-            std::acos(std::clamp(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2], -1.0, 1.0));
-        }
-      });
     double sum = 0.0, sumSq = 0.0;
     int64_t count = 0;
     for (int64_t e = 0; e < ne; ++e)
@@ -417,6 +428,86 @@ DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const Dua
     },
     progress);
   return out;
+}
+
+/// Straightens one-face zig-zags of the refined boundaries (see
+/// FeatureRefinementOptions::straightenLines): a face whose two sides at vertex u are boundary
+/// edges to one other cluster, whose third side (v, w) is not, and where u is on no other
+/// boundary edge, goes to that other cluster, so the boundary runs v - w instead of v - u - w.
+/// Each change removes one boundary edge, so this ends; faces are visited in id order, pass
+/// after pass, so the result does not depend on the thread count.
+/// @return the number of faces relabelled; `label` is updated in place
+int64_t straightenBoundaries(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& dihedral, double creaseAngle, int64_t numClusters,
+  std::vector<int32_t>& label)
+{
+  const int64_t nf = mesh.numTriangles();
+  const int64_t ne = edges.numEdges();
+  std::vector<uint8_t> boundary = boundaryEdges(edges, label);
+  std::vector<int32_t> degree(mesh.numPoints(), 0);
+  for (int64_t e = 0; e < ne; ++e)
+  {
+    if (boundary[e])
+    {
+      ++degree[edges.vertices[2 * e]];
+      ++degree[edges.vertices[2 * e + 1]];
+    }
+  }
+  std::vector<int64_t> size(numClusters, 0);
+  for (int32_t l : label)
+  {
+    ++size[l];
+  }
+  auto across = [&](int64_t e, int64_t f)
+  {
+    const int32_t a = edges.edgeFaces[edges.faceOffsets[e]];
+    return a == f ? edges.edgeFaces[edges.faceOffsets[e] + 1] : a;
+  };
+  auto crease = [&](int64_t e) { return dihedral[e] >= creaseAngle; };
+  int64_t changed = 0;
+  for (bool again = true; again;)
+  {
+    again = false;
+    for (int64_t f = 0; f < nf; ++f)
+    {
+      const int32_t* side = &edges.faceEdges[3 * f];
+      if (edges.valence(side[0]) != 2 || edges.valence(side[1]) != 2 || edges.valence(side[2]) != 2)
+      {
+        continue;
+      }
+      // Side k runs from corner k to corner k + 1: the two boundary sides meet at the corner
+      // they share.
+      int k = -1;
+      for (int i = 0; i < 3; ++i)
+      {
+        if (!boundary[side[i]] && boundary[side[(i + 1) % 3]] && boundary[side[(i + 2) % 3]])
+        {
+          k = i;
+        }
+      }
+      if (k < 0)
+      {
+        continue;
+      }
+      const int64_t vw = side[k], a = side[(k + 1) % 3], b = side[(k + 2) % 3];
+      const int32_t u = mesh.triangles[3 * f + (k + 2) % 3];
+      const int32_t other = label[across(a, f)];
+      if (label[across(b, f)] != other || degree[u] != 2 || size[label[f]] == 1 ||
+        ((crease(a) || crease(b)) && dihedral[vw] < std::max(dihedral[a], dihedral[b])))
+      {
+        continue;
+      }
+      --size[label[f]];
+      ++size[other];
+      label[f] = other;
+      boundary[a] = boundary[b] = 0;
+      boundary[vw] = 1;
+      degree[u] = 0;
+      ++changed;
+      again = true;
+    }
+  }
+  return changed;
 }
 
 /// Minimum s-t cuts of section 4.2 (Katz and Tal 2003) for every pair of adjacent clusters at
@@ -790,6 +881,11 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
     {
       break;
     }
+  }
+  if (options.straightenLines)
+  {
+    result.straightenedFaces = straightenBoundaries(mesh, edges, edgeDihedrals(mesh, edges),
+      options.creaseAngle * kPi / 180.0, numClusters, label);
   }
   for (int64_t f = 0; f < nf; ++f)
   {
