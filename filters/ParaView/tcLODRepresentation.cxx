@@ -78,7 +78,7 @@ int tcLODRepresentation::RequestData(
     this->BoundsMapper->SetInputData(atlas);
     this->BoundsMapper->GetBounds(this->Bounds);
     this->BoundsMapper->RemoveObserver(observer);
-    // The mapper keeps its conversion; the copy of the data object is not needed any more.
+    // Without input the mapper frees its conversion: only the rendering mapper keeps one.
     this->BoundsMapper->SetInputData(nullptr);
     if (messages.empty())
     {

@@ -290,6 +290,22 @@ int tcLODMapper::FillInputPortInformation(int, vtkInformation* info)
 void tcLODMapper::SetInputData(vtkDataObject* atlas)
 {
   this->SetInputDataInternal(0, atlas);
+  if (!atlas)
+  {
+    this->ReleaseAtlas();
+  }
+}
+
+void tcLODMapper::ReleaseAtlas()
+{
+  // The converted atlas is a full copy of the input's texels: nothing of it is kept once the
+  // input is gone (the GPU copy goes with the graphics resources).
+  Internals& in = *this->Internal;
+  in.atlas = tc::Atlas();
+  in.valid = false;
+  in.atlasTime = 0;
+  in.list = tc::LodDrawList();
+  in.haveSelection = false;
 }
 
 void tcLODMapper::SetChartLevels(vtkIntArray* levels)
@@ -412,8 +428,7 @@ bool tcLODMapper::UpdateAtlas()
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   if (!input)
   {
-    in.valid = false;
-    in.list = tc::LodDrawList();
+    this->ReleaseAtlas();
     return false;
   }
   if (input->GetMTime() == in.atlasTime)

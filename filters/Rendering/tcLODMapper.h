@@ -53,6 +53,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// The atlas to draw, without a pipeline (or SetInputConnection to a reader or filter).
+  /// nullptr also frees the mapper's converted copy of the previous atlas.
   void SetInputData(vtkDataObject* atlas);
 
   enum ColorModes
@@ -193,6 +194,7 @@ private:
   friend class tcLODGridMapper;
 
   bool UpdateAtlas();
+  void ReleaseAtlas();
   void UploadAtlas(vtkRenderer* ren);
   void SelectLevels(vtkRenderer* ren, vtkActor* act);
 };

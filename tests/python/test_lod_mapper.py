@@ -84,6 +84,19 @@ def test_not_an_atlas_draws_nothing(atlas):
     assert mapper.GetTrianglesDrawn() == 0
 
 
+def test_removing_the_input_frees_the_converted_atlas(atlas):
+    mapper = trichart.tcLODMapper()
+    mapper.SetInputData(atlas)
+    bounds = mapper.GetBounds()  # converts the atlas, without rendering
+    assert mapper.GetNumberOfCharts() == trichart.atlas_charts(atlas).GetNumberOfRows() > 0
+    assert bounds[1] > bounds[0]
+    mapper.SetInputData(None)
+    assert mapper.GetNumberOfCharts() == 0
+    mapper.SetInputData(atlas)  # and a new input is converted again
+    mapper.GetBounds()
+    assert mapper.GetNumberOfCharts() == trichart.atlas_charts(atlas).GetNumberOfRows()
+
+
 def pixels(window):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
