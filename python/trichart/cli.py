@@ -82,6 +82,7 @@ def cmd_build(args):
         result = build(args.mesh, args.output, stages=args.stages, progress=bar,
                        image=not args.no_image,
                        cluster_options={"number_of_clusters": args.clusters},
+                       feature_options={"crease_angle": args.crease_angle},
                        base_options={"target_faces": args.base_faces},
                        geometry_options=options)
     finally:
@@ -162,6 +163,9 @@ def main(argv=None):
                    help="also write every stage as VTP (and pictures) into this folder")
     p.add_argument("--clusters", type=int, default=16,
                    help="number of spectral clusters (default 16)")
+    p.add_argument("--crease-angle", type=float, default=30.0,
+                   help="dihedral angle in degrees of a crease, which straightened feature "
+                        "lines keep (default 30; organic meshes simplify further with 60)")
     p.add_argument("--base-faces", type=int, default=100,
                    help="target number of base-complex triangles (default 100)")
     p.add_argument("--max-level", type=int, default=8,
@@ -190,6 +194,12 @@ def main(argv=None):
                    help="merge points closer than this fraction of the diagonal")
     p.add_argument("--split-non-manifold", action="store_true")
     args = parser.parse_args(argv)
+    if args.command == "build":
+        # The filters clamp these silently; a command line says what is wrong instead.
+        if not 0 <= args.stretch_iterations <= 100:
+            parser.error(f"--stretch-iterations must be 0 .. 100, not {args.stretch_iterations}")
+        if not 0.0 <= args.crease_angle <= 180.0:
+            parser.error(f"--crease-angle must be 0 .. 180 degrees, not {args.crease_angle}")
 
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()

@@ -95,6 +95,24 @@ def test_too_many_clusters_is_a_clear_error(testing_data, tmp_path):
     assert "12" in r.stderr and "16" in r.stderr
 
 
+def test_build_options_reach_the_stages(testing_data, tmp_path):
+    # Floater's map alone and no feature-line straightening give another atlas than the
+    # defaults; out-of-range values are refused before anything runs.
+    plain = tmp_path / "plain.exr"
+    r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", plain, "-q",
+            "--stretch-iterations", "0", "--crease-angle", "0")
+    assert r.returncode == 0, r.stderr
+    default = tmp_path / "default.exr"
+    assert run("build", testing_data / "meshes" / "bunny_npm.off", "-o", default,
+               "-q").returncode == 0
+    assert plain.read_bytes() != default.read_bytes()
+    for option, value in (("--stretch-iterations", "101"), ("--crease-angle", "-1")):
+        r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o",
+                tmp_path / "bad.exr", option, value)
+        assert r.returncode == 2 and option in r.stderr, r.stderr
+        assert not (tmp_path / "bad.exr").exists()
+
+
 def test_prepare_reports_and_splits(tmp_path):
     mesh = tmp_path / "fins.off"
     # Three triangles on the edge (0, 1): a non-manifold edge.
