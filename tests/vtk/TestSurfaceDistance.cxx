@@ -11,14 +11,12 @@
 
 #include "tc/array_names.h"
 
-#include <vtkActor.h>
 #include <vtkDataArray.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
@@ -91,18 +89,8 @@ vtkSmartPointer<vtkRenderer> DistanceRenderer(
   lut->SetHueRange(0.667, 0.0);
   lut->SetTableRange(0.0, top);
   lut->Build();
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(surface);
-  mapper->SetScalarModeToUsePointFieldData();
-  mapper->SelectColorArray(tc::kDistance);
-  mapper->SetLookupTable(lut);
-  mapper->UseLookupTableScalarRangeOn();
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  auto renderer = vtkSmartPointer<vtkRenderer>::New();
-  renderer->SetViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  renderer->SetBackground(0.32, 0.34, 0.43);
-  renderer->AddActor(actor);
+  vtkSmartPointer<vtkRenderer> renderer =
+    tctest::ArrayRenderer(surface, tc::kDistance, false, lut, viewport);
   if (bar)
   {
     vtkNew<vtkScalarBarActor> scale;

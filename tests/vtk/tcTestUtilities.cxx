@@ -27,6 +27,7 @@
 #include <vtkRegressionTestImage.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkScalarsToColors.h>
 #include <vtkSphereSource.h>
 
 #include <fstream>
@@ -159,17 +160,14 @@ vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   return window;
 }
 
-vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,
-  vtkPolyData* lines, vtkPolyData* points, const double viewport[4])
+vtkSmartPointer<vtkRenderer> ArrayRenderer(vtkPolyData* surface, const char* array, bool cells,
+  vtkScalarsToColors* lut, const double viewport[4])
 {
-  // Labels are looked up in cell data first, then in point data.
-  vtkDataArray* cellValues = surface->GetCellData()->GetArray(labels);
-  vtkDataArray* values = cellValues ? cellValues : surface->GetPointData()->GetArray(labels);
-  vtkNew<vtkLookupTable> lut;
-  tcvtk::LabelColors(lut, values);
+  vtkDataArray* values =
+    cells ? surface->GetCellData()->GetArray(array) : surface->GetPointData()->GetArray(array);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(surface);
-  if (cellValues)
+  if (cells)
   {
     mapper->SetScalarModeToUseCellFieldData();
   }
@@ -177,7 +175,7 @@ vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* lab
   {
     mapper->SetScalarModeToUsePointFieldData();
   }
-  mapper->SelectColorArray(labels);
+  mapper->SelectColorArray(array);
   mapper->SetLookupTable(lut);
   mapper->UseLookupTableScalarRangeOn();
   mapper->SetScalarVisibility(values != nullptr);
@@ -187,6 +185,19 @@ vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* lab
   renderer->SetViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   renderer->SetBackground(0.32, 0.34, 0.43);
   renderer->AddActor(actor);
+  return renderer;
+}
+
+vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* labels,
+  vtkPolyData* lines, vtkPolyData* points, const double viewport[4])
+{
+  // Labels are looked up in cell data first, then in point data.
+  vtkDataArray* cellValues = surface->GetCellData()->GetArray(labels);
+  vtkDataArray* values = cellValues ? cellValues : surface->GetPointData()->GetArray(labels);
+  vtkNew<vtkLookupTable> lut;
+  tcvtk::LabelColors(lut, values);
+  vtkSmartPointer<vtkRenderer> renderer =
+    ArrayRenderer(surface, labels, cellValues != nullptr, lut, viewport);
   AddLines(renderer, lines, 3.0);
   if (points && points->GetNumberOfPoints() > 0)
   {

@@ -15,6 +15,7 @@ class tcGeometryImages;
 class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
+class vtkScalarsToColors;
 
 namespace tctest
 {
@@ -41,6 +42,11 @@ vtkSmartPointer<tcFeatureRefinement> FeatureStages(vtkPolyData* prepared);
 /// diverging colour map symmetric about 0, and `lines` (if any) drawn in black on top.
 vtkSmartPointer<vtkRenderWindow> CurvatureScene(
   vtkPolyData* surface, const char* array, vtkPolyData* lines);
+
+/// A renderer over `viewport` (xmin, ymin, xmax, ymax) of `surface` coloured through `lut` by its
+/// point array (or, with `cells`, cell array) `array`; the camera is left as it is.
+vtkSmartPointer<vtkRenderer> ArrayRenderer(vtkPolyData* surface, const char* array, bool cells,
+  vtkScalarsToColors* lut, const double viewport[4]);
 
 /// A viewport-filling renderer for `surface` coloured by the integer cell (or else point) array
 /// `labels`
