@@ -181,6 +181,65 @@ std::vector<LevelError> levelErrors(const tc::Atlas& atlas, const tc::TriMesh& r
   return levels;
 }
 
+/// The levels the renderer's error rule gives for a threshold `tau` (tc::selectLevels in error
+/// mode at a fixed scale): each chart at the coarsest level whose levelError is at most tau, or
+/// at its finest level.
+std::vector<int32_t> levelsWithin(const tc::Atlas& atlas, double tau)
+{
+  std::vector<int32_t> levels;
+  for (const tc::AtlasChart& chart : atlas.charts)
+  {
+    int32_t d = 0;
+    while (d < chart.maxLevel && chart.levelError[static_cast<size_t>(d)] > tau)
+    {
+      ++d;
+    }
+    levels.push_back(d);
+  }
+  return levels;
+}
+
+int64_t trianglesOf(const std::vector<int32_t>& levels)
+{
+  int64_t sum = 0;
+  for (int32_t d : levels)
+  {
+    sum += int64_t(1) << (2 * d);
+  }
+  return sum;
+}
+
+/// The renderer's adaptive rule at the largest triangle count that does not exceed
+/// `maxTriangles`: the smallest threshold (among the charts' levelError values) that fits.
+std::vector<int32_t> adaptiveLevels(const tc::Atlas& atlas, int64_t maxTriangles)
+{
+  std::vector<double> taus{ 0.0 };
+  for (const tc::AtlasChart& chart : atlas.charts)
+  {
+    for (int32_t d = 0; d <= chart.maxLevel; ++d)
+    {
+      taus.push_back(chart.levelError[static_cast<size_t>(d)]);
+    }
+  }
+  std::sort(taus.begin(), taus.end());
+  taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
+  // Triangles fall as tau rises: the first tau that fits.
+  size_t lo = 0, hi = taus.size() - 1;
+  while (lo < hi)
+  {
+    const size_t mid = (lo + hi) / 2;
+    if (trianglesOf(levelsWithin(atlas, taus[mid])) <= maxTriangles)
+    {
+      hi = mid;
+    }
+    else
+    {
+      lo = mid + 1;
+    }
+  }
+  return levelsWithin(atlas, taus[lo]);
+}
+
 /// Prints one line per stage run and returns their total.
 double printSeconds(const Stages& stages)
 {
@@ -328,6 +387,29 @@ void benchmark(const std::string& file)
                 << qem.triangles << std::setw(11) << percent(qem.hausdorff) << std::setw(11)
                 << percent(qem.rms) << std::setw(8) << fixed(hRatio, 2) << std::setw(8)
                 << fixed(rmsRatio, 2) << mark(hOk) << ", " << mark(rmsOk) << "\n";
+    }
+    std::cout << std::right;
+
+    // What the renderer draws is not a uniform level: its error rule puts each chart at the
+    // coarsest level within one error threshold. The same triangle counts that way.
+    std::cout << "\nadaptive levels (the renderer's error rule: each chart at the coarsest level "
+                 "whose levelError is within one threshold), at most the triangles of each "
+                 "uniform level\n";
+    std::cout << std::left << std::setw(6) << "as" << std::setw(9) << "verts" << std::setw(9)
+              << "tris" << std::setw(11) << "H" << std::setw(11) << "RMS" << std::setw(11)
+              << "QEM H" << std::setw(11) << "QEM RMS" << std::setw(8) << "H/QEM"
+              << "RMS/QEM\n";
+    for (size_t d = 0; d < ours.size(); ++d)
+    {
+      const LevelError adaptive =
+        errorOf(tc::rebuildMesh(atlas, adaptiveLevels(atlas, ours[d].triangles)).mesh, mesh);
+      const LevelError qem = errorOf(simplifyQem(mesh, adaptive.triangles), mesh);
+      std::cout << std::setw(6) << d << std::setw(9) << adaptive.vertices << std::setw(9)
+                << adaptive.triangles << std::setw(11) << percent(adaptive.hausdorff)
+                << std::setw(11) << percent(adaptive.rms) << std::setw(11) << percent(qem.hausdorff)
+                << std::setw(11) << percent(qem.rms) << std::setw(8)
+                << fixed(adaptive.hausdorff / qem.hausdorff, 2) << fixed(adaptive.rms / qem.rms, 2)
+                << "\n";
     }
     std::cout << std::right;
     const LevelError& finest = ours.back();
