@@ -10,6 +10,8 @@
 //   tc_bench_lod_selection
 #include "tc/lod_selection.h"
 
+#include "view_matrices.h"
+
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -63,51 +65,15 @@ double medianMilliseconds(const std::function<void()>& work)
   return ms[kCalls / 2];
 }
 
-using Matrix = std::array<double, 16>;
-
-Matrix multiply(const Matrix& a, const Matrix& b)
-{
-  Matrix c{};
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int k = 0; k < 4; ++k)
-    {
-      for (int j = 0; j < 4; ++j)
-      {
-        c[4 * r + k] += a[4 * r + j] * b[4 * j + k];
-      }
-    }
-  }
-  return c;
-}
+using tctest::Matrix;
+using tctest::multiply;
 
 /// OpenGL perspective times look-at, row-major (as gluPerspective * gluLookAt).
 Matrix camera(const std::array<double, 3>& eye, const std::array<double, 3>& target,
   double fovyDegrees, double aspect, double zNear, double zFar)
 {
-  std::array<double, 3> f{ target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] };
-  const double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-  for (double& v : f)
-  {
-    v /= fl;
-  }
-  const std::array<double, 3> up{ 0.0, 1.0, 0.0 };
-  std::array<double, 3> s{ f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2],
-    f[0] * up[1] - f[1] * up[0] };
-  const double sl = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-  for (double& v : s)
-  {
-    v /= sl;
-  }
-  const std::array<double, 3> u{ s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
-    s[0] * f[1] - s[1] * f[0] };
-  const Matrix view{ s[0], s[1], s[2], -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]), u[0], u[1],
-    u[2], -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]), -f[0], -f[1], -f[2],
-    f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 0, 0, 0, 1 };
-  const double t = 1.0 / std::tan(fovyDegrees * 3.14159265358979323846 / 360.0);
-  const Matrix projection{ t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (zFar + zNear) / (zNear - zFar),
-    2.0 * zFar * zNear / (zNear - zFar), 0, 0, -1, 0 };
-  return multiply(projection, view);
+  return multiply(
+    tctest::perspective(fovyDegrees, aspect, zNear, zFar), tctest::lookAt(eye, target));
 }
 
 /// `count` charts with random boxes in the unit cube: c0 uniform, three orthogonal axes of

@@ -9,6 +9,8 @@
 #include "tc/atlas.h"
 #include "tc/errors.h"
 
+#include "view_matrices.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,40 +23,13 @@
 
 namespace
 {
-using Matrix = std::array<double, 16>;
+using tctest::lookAt;
+using tctest::Matrix;
+using tctest::multiply;
+using tctest::ortho;
+using tctest::perspective;
 using Vec3 = std::array<double, 3>;
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-/// glOrtho(left, right, bottom, top, near, far), row-major.
-Matrix ortho(double l, double r, double b, double t, double n, double f)
-{
-  return { 2 / (r - l), 0, 0, -(r + l) / (r - l), 0, 2 / (t - b), 0, -(t + b) / (t - b), 0, 0,
-    -2 / (f - n), -(f + n) / (f - n), 0, 0, 0, 1 };
-}
-
-/// gluPerspective(fovy, aspect, near, far) with the eye at the origin looking down -z, row-major.
-Matrix perspective(double fovyDegrees, double aspect, double n, double f)
-{
-  const double t = 1.0 / std::tan(fovyDegrees * 3.14159265358979323846 / 360.0);
-  return { t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (f + n) / (n - f), 2 * f * n / (n - f), 0, 0, -1,
-    0 };
-}
-
-Matrix multiply(const Matrix& a, const Matrix& b)
-{
-  Matrix c{};
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int k = 0; k < 4; ++k)
-    {
-      for (int j = 0; j < 4; ++j)
-      {
-        c[4 * r + k] += a[4 * r + j] * b[4 * j + k];
-      }
-    }
-  }
-  return c;
-}
 
 Vec3 cross(const Vec3& a, const Vec3& b)
 {
@@ -587,24 +562,8 @@ tc::LodView randomView(std::mt19937& rng)
     projection = ortho(-half * aspect, half * aspect, -half, half, -20, 20);
   }
   const Vec3 eye{ 2 * u(rng), 2 * u(rng), 2 * u(rng) };
-  Vec3 target{ 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng) };
-  Vec3 f{ target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] };
-  const double fl = norm(f);
-  for (double& v : f)
-  {
-    v /= fl;
-  }
-  Vec3 s = cross(f, { 0, 1, 0 });
-  const double sl = norm(s);
-  for (double& v : s)
-  {
-    v /= sl;
-  }
-  const Vec3 up = cross(s, f);
-  const Matrix lookAt{ s[0], s[1], s[2], -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]), up[0],
-    up[1], up[2], -(up[0] * eye[0] + up[1] * eye[1] + up[2] * eye[2]), -f[0], -f[1], -f[2],
-    f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 0, 0, 0, 1 };
-  view.worldToClip = multiply(projection, lookAt);
+  const Vec3 target{ 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng) };
+  view.worldToClip = multiply(projection, lookAt(eye, target));
   return view;
 }
 
