@@ -358,10 +358,21 @@ std::pair<double, double> triangleStretch2(
   return { 0.5 * (ss.squaredNorm() + st.squaredNorm()), area3 };
 }
 
-/// The area-weighted L2 stretch of the whole patch (infinite if a triangle has no uv area).
-double l2Stretch(const TriMesh& mesh, const PatchParameterization& p)
+/// The area-weighted L2 stretch of the whole patch (infinite if a triangle has no uv area)
+/// and, with `sigma`, per point the L2 stretch of its triangles (area-weighted) normalized by the
+/// patch's, clamped to [1e-3, 1e3] so that one sliver cannot make a weight vanish or explode.
+double patchStretch(
+  const TriMesh& mesh, const PatchParameterization& p, std::vector<double>* sigma = nullptr)
 {
+  const size_t np = p.points.size();
+  std::vector<double> pointSum, pointArea;
+  if (sigma)
+  {
+    pointSum.assign(np, 0.0);
+    pointArea.assign(np, 0.0);
+  }
   double sum = 0.0, area = 0.0;
+  double clampedSum = 0.0; // the weights' mean: no infinite term
   for (int64_t t = 0; t < static_cast<int64_t>(p.triangles.size() / 3); ++t)
   {
     const auto [s2, a3] = triangleStretch2(mesh, p, t);
@@ -370,36 +381,28 @@ double l2Stretch(const TriMesh& mesh, const PatchParameterization& p)
       sum += s2 * a3;
       area += a3;
     }
+    if (sigma)
+    {
+      const double c = std::min(s2, 1e300);
+      for (int k = 0; k < 3; ++k)
+      {
+        pointSum[p.triangles[3 * t + k]] += c * a3;
+        pointArea[p.triangles[3 * t + k]] += a3;
+      }
+      clampedSum += c * a3;
+    }
+  }
+  if (sigma)
+  {
+    const double mean = area > 0.0 && clampedSum > 0.0 ? std::sqrt(clampedSum / area) : 1.0;
+    sigma->resize(np);
+    for (size_t v = 0; v < np; ++v)
+    {
+      const double s = pointArea[v] > 0.0 ? std::sqrt(pointSum[v] / pointArea[v]) / mean : 1.0;
+      (*sigma)[v] = std::clamp(std::isfinite(s) ? s : 1e3, 1e-3, 1e3);
+    }
   }
   return area > 0.0 ? std::sqrt(sum / area) : 0.0;
-}
-
-/// Per point, the L2 stretch of its triangles (area-weighted), normalized by the patch's, and
-/// clamped to [1e-3, 1e3] so that one sliver cannot make a weight vanish or explode.
-void vertexStretch(const TriMesh& mesh, const PatchParameterization& p, std::vector<double>& sigma)
-{
-  const size_t np = p.points.size();
-  std::vector<double> sum(np, 0.0), area(np, 0.0);
-  double total = 0.0, totalArea = 0.0;
-  for (int64_t t = 0; t < static_cast<int64_t>(p.triangles.size() / 3); ++t)
-  {
-    auto [s2, a3] = triangleStretch2(mesh, p, t);
-    s2 = std::min(s2, 1e300);
-    for (int k = 0; k < 3; ++k)
-    {
-      sum[p.triangles[3 * t + k]] += s2 * a3;
-      area[p.triangles[3 * t + k]] += a3;
-    }
-    total += s2 * a3;
-    totalArea += a3;
-  }
-  const double mean = totalArea > 0.0 && total > 0.0 ? std::sqrt(total / totalArea) : 1.0;
-  sigma.resize(np);
-  for (size_t v = 0; v < np; ++v)
-  {
-    const double s = area[v] > 0.0 ? std::sqrt(sum[v] / area[v]) / mean : 1.0;
-    sigma[v] = std::clamp(std::isfinite(s) ? s : 1e3, 1e-3, 1e3);
-  }
 }
 
 PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult& base,
@@ -652,7 +655,9 @@ PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult&
       }
     };
     solve();
-    p.meanValueStretch = p.stretch = l2Stretch(mesh, p);
+    std::vector<double> sigma;
+    p.meanValueStretch = p.stretch =
+      patchStretch(mesh, p, stretchIterations > 0 ? &sigma : nullptr);
     // Stretch reduction (Yoshizawa, Belyaev and Seidel 2004): divide each weight w_ij by the
     // L2 stretch of neighbour j and solve again, keeping the best map. The weights stay
     // positive, so every map is still a convex combination with a convex border (Tutte and
@@ -661,16 +666,14 @@ PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult&
     if (stretchIterations > 0)
     {
       std::vector<double> best = p.uv;
-      std::vector<double> sigma;
       for (int32_t it = 0; it < stretchIterations; ++it)
       {
-        vertexStretch(mesh, p, sigma);
         for (Entry& en : entries)
         {
           en.w /= sigma[en.col];
         }
         solve();
-        const double s = l2Stretch(mesh, p);
+        const double s = patchStretch(mesh, p, &sigma);
         if (!(s < p.stretch))
         {
           break;
