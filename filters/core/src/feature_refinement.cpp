@@ -320,7 +320,6 @@ Band buildBand(const TriMesh& mesh, const EdgeTable& edges, const DualGraph& dua
 
 using DualCapacity = std::vector<double>;
 
-/// Eq. 4 for every entry of the dual graph (see FeatureRefinementOptions::dihedralWeight).
 /// The angle between the normals of the two faces of every manifold edge, in radians (0 on
 /// other edges).
 std::vector<double> edgeDihedrals(const TriMesh& mesh, const EdgeTable& edges)
@@ -361,9 +360,12 @@ std::vector<double> edgeDihedrals(const TriMesh& mesh, const EdgeTable& edges)
   return dihedral;
 }
 
+/// Eq. 4 for every entry of the dual graph (see FeatureRefinementOptions::dihedralWeight);
+/// `dihedral` is edgeDihedrals' result, needed only when dihedralWeight > 0.
 DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const DualGraph& dual,
   const std::vector<double>& faceMeanCurvature, const std::vector<uint8_t>& crestVertex,
-  const FeatureRefinementOptions& options, const Progress& progress)
+  const std::vector<double>& dihedral, const FeatureRefinementOptions& options,
+  const Progress& progress)
 {
   const int64_t nf = mesh.numTriangles();
   // sigma_k of eq. 3/4: the standard deviation of |kappa| over all faces.
@@ -379,11 +381,9 @@ DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const Dua
   const double inverseSigma = sigma > 0.0 ? 1.0 / sigma : 0.0;
   // The dihedral angle theta_e between the normals of the two faces of each manifold edge, and
   // its standard deviation sigma_theta over those edges (see dihedralWeight).
-  std::vector<double> dihedral;
   double inverseSigmaTheta = 0.0;
   if (options.dihedralWeight > 0.0)
   {
-    dihedral = edgeDihedrals(mesh, edges);
     const int64_t ne = edges.numEdges();
     double sum = 0.0, sumSq = 0.0;
     int64_t count = 0;
@@ -411,7 +411,7 @@ DualCapacity dualCapacity(const TriMesh& mesh, const EdgeTable& edges, const Dua
     const int32_t a = edges.vertices[2 * e], b = edges.vertices[2 * e + 1];
     const double beta =
       !crestVertex.empty() && crestVertex[a] && crestVertex[b] ? options.crestBeta : 1.0;
-    const double theta = dihedral.empty() ? 0.0 : dihedral[e] * inverseSigmaTheta;
+    const double theta = options.dihedralWeight > 0.0 ? dihedral[e] * inverseSigmaTheta : 0.0;
     return beta * distance(mesh, a, b) *
       std::exp(
         -(std::abs(faceMeanCurvature[f]) + std::abs(faceMeanCurvature[g])) * inverseSigma - theta);
@@ -860,8 +860,12 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   // 2. The band and its minimum cuts (eq. 4), repeated on the new boundaries while they move
   //    (see cutPasses).
   const std::vector<int32_t> inputLabel = label;
+  // Edge dihedral angles, for eq. 4's crease factor and for straightening.
+  const std::vector<double> dihedral = options.dihedralWeight > 0.0 || options.straightenLines
+    ? edgeDihedrals(mesh, edges)
+    : std::vector<double>();
   const DualCapacity capacity = dualCapacity(
-    mesh, edges, dual, faceMeanCurvature, crestVertex, options, progress.sub(0.05, 0.1));
+    mesh, edges, dual, faceMeanCurvature, crestVertex, dihedral, options, progress.sub(0.05, 0.1));
   const int passes = std::max(1, options.cutPasses);
   Band first;
   for (int pass = 0; pass < passes; ++pass)
@@ -884,8 +888,8 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   }
   if (options.straightenLines)
   {
-    result.straightenedFaces = straightenBoundaries(mesh, edges, edgeDihedrals(mesh, edges),
-      options.creaseAngle * kPi / 180.0, numClusters, label);
+    result.straightenedFaces = straightenBoundaries(
+      mesh, edges, dihedral, options.creaseAngle * kPi / 180.0, numClusters, label);
   }
   for (int64_t f = 0; f < nf; ++f)
   {
