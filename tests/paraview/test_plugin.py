@@ -47,7 +47,8 @@ clusters = TriChartSpectralClustering(Input=curv, NumberOfClusters=12)  # noqa: 
 check(clusters.Seed == 1 and clusters.NystromThreshold == 100000 and clusters.NystromSamples == 500,
       "clustering defaults match the C++ defaults")
 features = TriChartFeatureRefinement(Input=clusters)  # noqa: F821
-check(features.BandFraction == 0.1 and features.CornerRings == 8, "refinement defaults")
+check(features.BandFraction == 0.1 and features.CornerRings == 8
+      and features.StraightenLines == 1 and features.CreaseAngle == 30.0, "refinement defaults")
 UpdatePipeline(proxy=features)
 clustered = servermanager.Fetch(clusters)
 check(clustered.GetCellData().GetArray("ClusterId").GetRange() == (0.0, 11.0), "12 clusters")
