@@ -152,7 +152,9 @@ double awkwardDouble(uint64_t h)
 
 /// Identifies sample (i, j) of chart c at level d (N = 2^d) so that copies of one surface point
 /// get one key: a base vertex for corners, the base edge (low end first) and the reduced dyadic
-/// fraction along it for side samples, the chart, level and grid position otherwise.
+/// fraction along it for side samples, the chart and the reduced dyadic grid position (i, j) / N
+/// otherwise, so that every level is the next finer one at every other sample, like the
+/// pipeline's point-sampled pyramid.
 uint64_t sampleKey(int c, int32_t d, int32_t i, int32_t j)
 {
   const int32_t n = 1 << d;
@@ -188,7 +190,14 @@ uint64_t sampleKey(int c, int32_t d, int32_t i, int32_t j)
   }
   if (side < 0)
   {
-    return hashOf({ 3, c, d, i, j });
+    int32_t m = n;
+    while (i % 2 == 0 && j % 2 == 0 && m > 1)
+    {
+      i /= 2;
+      j /= 2;
+      m /= 2;
+    }
+    return hashOf({ 3, c, m, i, j });
   }
   int a = corner[side];
   int b = corner[(side + 1) % 3];
@@ -610,14 +619,58 @@ Json metadataOf(const std::vector<ExrPart>& parts)
   return Json::parse(metadataTextOf(parts));
 }
 
-/// Rewrites the atlas file `from` as version 1 wrote it to `to`: the same parts and the same
-/// JSON text with "version": 1, stored plainly.
-void writeVersion1(const std::string& from, const std::string& to)
+/// Writes `atlas` to `to` as version 1 or 2 wrote it, from `from`, the same atlas written by
+/// writeAtlas: the same headers and metadata, but every part holds its whole image (no compact
+/// parts, no "texels" entries) and the metadata says `version`, stored plainly for version 1.
+void writeOldVersion(
+  const tc::Atlas& atlas, const std::string& from, const std::string& to, int version)
 {
   std::vector<ExrPart> parts = loadParts(from);
+  for (ExrPart& part : parts)
+  {
+    const std::string name = part.header.name();
+    const size_t dot = name.rfind('.');
+    const size_t k = std::stoul(name.substr(dot + 1));
+    size_t a = 0;
+    while (atlas.attributes[a].name != name.substr(0, dot))
+    {
+      ++a;
+    }
+    const tc::AtlasImage& image = atlas.images[k];
+    part.header.dataWindow() =
+      Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(image.width - 1, image.height - 1));
+    const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+    size_t c = 0;
+    for (auto it = part.header.channels().begin(); it != part.header.channels().end(); ++it, ++c)
+    {
+      std::vector<float>& data = part.channels[it.name()];
+      data.assign(static_cast<size_t>(image.width * image.height), 0.0f);
+      // Channels are listed by name; components in the order channelNames gives them.
+      const std::map<std::string, size_t> component = { { "X", 0 }, { "Y", 1 }, { "Z", 2 },
+        { "R", 0 }, { "G", 1 }, { "B", 2 }, { "A", 3 } };
+      const auto found = component.find(it.name());
+      const size_t x =
+        found != component.end() ? found->second : std::stoul(std::string(it.name()).substr(1));
+      for (size_t t = 0; t < data.size(); ++t)
+      {
+        data[t] = image.data[a][t * comps + x];
+      }
+    }
+  }
   Json metadata = metadataOf(parts);
-  metadata["version"] = 1;
-  setPlainMetadata(parts, metadata.dump());
+  metadata["version"] = version;
+  for (Json& image : metadata["images"])
+  {
+    image.erase("texels");
+  }
+  if (version == 1)
+  {
+    setPlainMetadata(parts, metadata.dump());
+  }
+  else
+  {
+    setMetadata(parts, metadata.dump());
+  }
   saveParts(to, parts);
 }
 
@@ -744,13 +797,18 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   const std::string path = file("layout.exr");
   tc::writeAtlas(atlas, path);
 
+  // Coarsest image first. Image k is 2 (N + 2) x (N + 1) with N = 2^(2 - k), all of it charts;
+  // its part holds the texels that image k + 1 does not: all 12 of image 2 (2 rows of 6), the
+  // 24 - 12 = 12 of image 1 (2 rows of 8), the 60 - 24 = 36 of image 0 (3 rows of 12).
+  const std::array<int32_t, 3> rows = { 3, 2, 2 };
+  const std::array<size_t, 3> stored = { 36, 12, 12 };
   Imf::MultiPartInputFile exr(path.c_str());
   ASSERT_EQ(exr.parts(), 15);
   const std::map<int, std::vector<std::string>> channels = { { 1, { "R" } },
     { 3, { "X", "Y", "Z" } }, { 4, { "A", "B", "G", "R" } },
     { 6, { "C0", "C1", "C2", "C3", "C4", "C5" } } };
   int p = 0;
-  for (size_t k = 0; k < 3; ++k)
+  for (size_t k = 3; k-- > 0;)
   {
     for (const tc::AtlasAttribute& attribute : atlas.attributes)
     {
@@ -758,8 +816,10 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
       EXPECT_EQ(header.name(), attribute.name + "." + std::to_string(k));
       EXPECT_EQ(header.type(), Imf::SCANLINEIMAGE);
       EXPECT_EQ(header.compression(), Imf::ZIP_COMPRESSION);
+      EXPECT_EQ(header.dataWindow().min.x, 0);
+      EXPECT_EQ(header.dataWindow().min.y, 0);
       EXPECT_EQ(header.dataWindow().max.x, atlas.images[k].width - 1);
-      EXPECT_EQ(header.dataWindow().max.y, atlas.images[k].height - 1);
+      EXPECT_EQ(header.dataWindow().max.y, rows[k] - 1);
       std::vector<std::string> names;
       for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
       {
@@ -770,14 +830,42 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
     }
   }
 
-  // Texel (x, y) of the atlas is pixel (x, y) of its part.
+  // A part lists its image's new texels in texel order (row y, then x), row after row of the
+  // part, then zeros. New: every sample of a chart's coarsest level, and every sample (i, j) of
+  // a finer level with i or j odd.
   const std::vector<ExrPart> parts = loadParts(path);
-  const tc::AtlasImage& image = atlas.images[1];
-  const std::vector<float>& z = parts[5 + 0].channels.at("Z");
-  const int x = 3;
-  const int y = 2;
-  EXPECT_EQ(bitsOf(z[static_cast<size_t>(y * image.width + x)]),
-    bitsOf(image.data[0][static_cast<size_t>(3 * (y * image.width + x) + 2)]));
+  for (size_t k = 0; k < 3; ++k)
+  {
+    const tc::AtlasImage& image = atlas.images[k];
+    const int32_t d = 2 - static_cast<int32_t>(k);
+    std::vector<bool> fresh(static_cast<size_t>(image.width * image.height), false);
+    for (const tc::AtlasChart& chart : atlas.charts)
+    {
+      for (int32_t j = 0; j <= (1 << d); ++j)
+      {
+        for (int32_t i = 0; i + j <= (1 << d); ++i)
+        {
+          const std::array<int32_t, 2> xy = tc::atlasTexel(chart, d, i, j);
+          fresh[static_cast<size_t>(xy[1] * image.width + xy[0])] = d == 0 || i % 2 || j % 2;
+        }
+      }
+    }
+    const std::vector<float>& z = parts[3 * 5 - 5 * (k + 1)].channels.at("Z");
+    ASSERT_EQ(z.size(), static_cast<size_t>(image.width * rows[k]));
+    size_t n = 0;
+    for (size_t t = 0; t < fresh.size(); ++t)
+    {
+      if (fresh[t])
+      {
+        EXPECT_EQ(bitsOf(z[n++]), bitsOf(image.data[0][3 * t + 2])) << "image " << k;
+      }
+    }
+    EXPECT_EQ(n, stored[k]);
+    for (; n < z.size(); ++n)
+    {
+      EXPECT_EQ(bitsOf(z[n]), 0u) << "image " << k;
+    }
+  }
 
   // The metadata: deflated JSON with its length and the checksum of the text, in part 0 only.
   const Imf::Header& first = parts[0].header;
@@ -789,8 +877,12 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
     static_cast<int>(text.size()));
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
-  EXPECT_EQ(tc::kAtlasFileVersion, 2);
+  EXPECT_EQ(tc::kAtlasFileVersion, 3);
   const Json metadata = Json::parse(text);
+  for (const Json& image : metadata["images"])
+  {
+    EXPECT_EQ(image["texels"], "new");
+  }
   EXPECT_EQ(metadata["format"], "TriChart atlas");
   EXPECT_EQ(metadata["version"], tc::kAtlasFileVersion);
   EXPECT_EQ(metadata["charts"].size(), 4u);
@@ -1016,13 +1108,18 @@ TEST_F(AtlasIo, RefusesDamagedMetadata)
   EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
 }
 
-TEST_F(AtlasIo, ReadsVersion1FilesBitExactly)
+TEST_F(AtlasIo, ReadsVersion1And2FilesBitExactly)
 {
   const tc::Atlas atlas = tetrahedronAtlas(2, true);
-  const std::string current = file("version2.exr");
+  const std::string current = file("version3.exr");
   tc::writeAtlas(atlas, current);
   const std::string old = file("version1.exr");
-  writeVersion1(current, old);
+  writeOldVersion(atlas, current, old, 1);
+  const std::string second = file("version2.exr");
+  writeOldVersion(atlas, current, second, 2);
+  EXPECT_TRUE(tc::isAtlasFile(second));
+  expectBitIdentical(atlas, tc::readAtlas(second));
+  EXPECT_EQ(metadataOf(loadParts(second))["version"], 2);
 
   // The file really has the old layout: plain JSON, no compressed block.
   const std::vector<ExrPart> parts = loadParts(old);
@@ -1052,13 +1149,13 @@ TEST_F(AtlasIo, ReadsVersion1FilesBitExactly)
 
 TEST_F(AtlasIo, RefusesMetadataStoredUnlikeItsVersion)
 {
-  // Version 1 text in the compressed block, version 2 text stored plainly.
+  // Version 1 text in the compressed block, version 3 text stored plainly.
   std::string error = metadataError([](Json& metadata) { metadata["version"] = 1; });
   EXPECT_TRUE(mentions(error, "says format version 1 but is stored compressed")) << error;
   EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
   error = damagedError(
     [](std::vector<ExrPart>& parts) { setPlainMetadata(parts, metadataTextOf(parts)); });
-  EXPECT_TRUE(mentions(error, "says format version 2 but is stored as plain text")) << error;
+  EXPECT_TRUE(mentions(error, "says format version 3 but is stored as plain text")) << error;
   EXPECT_TRUE(mentions(error, file("bad.exr"))) << error;
 }
 
@@ -1186,36 +1283,105 @@ TEST_F(AtlasIo, FlippedBytesInTheCompressedMetadataAreRefusedOrHarmless)
   EXPECT_GE(refused + 1, size);
 }
 
-TEST_F(AtlasIo, CompressedMetadataMakesTheFileSmallerThanVersion1)
+TEST_F(AtlasIo, EachVersionMakesTheFileSmaller)
 {
-  // The atlas of the bundled bunny with default options, 100+ charts: a chart table like a real
-  // one, not the tetrahedron's four charts.
+  // The atlas of the bundled bunny with default options, 100+ charts: a chart table and images
+  // like a real one's, not the tetrahedron's four full rectangles.
   const tctest::PipelineCase* bunny = tctest::pipelineCase(tctest::pipelineMeshPath("bunny_npm"));
   ASSERT_TRUE(bunny);
   const tc::Atlas atlas =
     tc::buildGeometryImages(tc::tracePaths(bunny->mesh, bunny->result), bunny->result, {}, {}, {});
   ASSERT_GE(atlas.charts.size(), 100u);
-  const std::string current = file("version2.exr");
+  const std::string current = file("version3.exr");
   tc::writeAtlas(atlas, current);
-  const std::string old = file("version1.exr");
-  writeVersion1(current, old);
-  expectBitIdentical(atlas, tc::readAtlas(old));
+  const std::string first = file("version1.exr");
+  writeOldVersion(atlas, current, first, 1);
+  const std::string second = file("version2.exr");
+  writeOldVersion(atlas, current, second, 2);
+  expectBitIdentical(atlas, tc::readAtlas(first));
+  expectBitIdentical(atlas, tc::readAtlas(second));
   expectBitIdentical(atlas, tc::readAtlas(current));
 
+  // The pipeline's pyramid is point-sampled: every image is stored compactly.
   const std::vector<ExrPart> parts = loadParts(current);
+  const Json metadata = metadataOf(parts);
+  for (const Json& image : metadata["images"])
+  {
+    EXPECT_EQ(image["texels"], "new");
+  }
   const double text = static_cast<double>(metadataTextOf(parts).size());
   const double packed = static_cast<double>(
     parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value().size());
-  const double before = static_cast<double>(fs::file_size(old));
-  const double after = static_cast<double>(fs::file_size(current));
+  const double v1 = static_cast<double>(fs::file_size(first));
+  const double v2 = static_cast<double>(fs::file_size(second));
+  const double v3 = static_cast<double>(fs::file_size(current));
   const double triangles = static_cast<double>(bunny->mesh.numTriangles());
   std::cout << "[ figures  ] bunny_npm, " << atlas.charts.size() << " charts: metadata " << text
-            << " -> " << packed << " bytes (" << text / packed << "x); file " << before << " -> "
-            << after << " bytes (" << before / after << "x smaller), " << before / triangles
-            << " -> " << after / triangles << " bytes per input triangle\n";
+            << " -> " << packed << " bytes (" << text / packed << "x); file version 1 " << v1
+            << ", version 2 " << v2 << ", version 3 " << v3 << " bytes = " << v1 / triangles << ", "
+            << v2 / triangles << ", " << v3 / triangles << " bytes per input triangle\n";
   // Deflate shrinks JSON text by more than 2x; the file must lose at least half the text.
   EXPECT_GT(text / packed, 2.0);
-  EXPECT_LT(after, before - text / 2);
+  EXPECT_LT(v2, v1 - text / 2);
+  // The coarser images are a third of the finest one's texels, which compact parts no longer
+  // repeat.
+  EXPECT_LT(v3, 0.85 * v2);
+}
+
+TEST_F(AtlasIo, ImagesThatAreNoPointSampledPyramidAreStoredWhole)
+{
+  // One texel of image 0 that is not its coarser copy, and one texel of image 1 no chart covers
+  // that is not 0: those images are written whole, the others compactly, all bit-exact.
+  tc::Atlas atlas = tetrahedronAtlas(3, true);
+  const std::array<int32_t, 2> inherited = tc::atlasTexel(atlas.charts[2], 3, 2, 4);
+  float& v =
+    atlas.images[0]
+      .data[3][4 * static_cast<size_t>(inherited[1] * atlas.images[0].width + inherited[0]) + 1];
+  v = floatFromBits(bitsOf(v) ^ 0x10u);
+  // Image 1 gains a column no chart covers.
+  tc::AtlasImage& image = atlas.images[1];
+  for (size_t a = 0; a < atlas.attributes.size(); ++a)
+  {
+    const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+    std::vector<float> wider;
+    for (int32_t y = 0; y < image.height; ++y)
+    {
+      const auto row = image.data[a].begin() + static_cast<std::ptrdiff_t>(y * image.width * comps);
+      wider.insert(wider.end(), row, row + static_cast<std::ptrdiff_t>(image.width * comps));
+      for (size_t x = 0; x < comps; ++x)
+      {
+        wider.push_back(y == 1 ? -0.0f : 0.0f);
+      }
+    }
+    image.data[a] = wider;
+  }
+  ++image.width;
+  ASSERT_NO_THROW(tc::validateAtlas(atlas));
+
+  const std::string path = file("mixed.exr");
+  tc::writeAtlas(atlas, path);
+  expectBitIdentical(atlas, tc::readAtlas(path));
+  const std::vector<ExrPart> parts = loadParts(path);
+  const Json metadata = metadataOf(parts);
+  EXPECT_EQ(metadata["images"][0]["texels"], "all");
+  EXPECT_EQ(metadata["images"][1]["texels"], "all");
+  EXPECT_EQ(metadata["images"][2]["texels"], "new");
+  EXPECT_EQ(metadata["images"][3]["texels"], "new");
+  EXPECT_EQ(
+    partNamed(const_cast<std::vector<ExrPart>&>(parts), "Color.0").header.dataWindow().max.x,
+    atlas.images[0].width - 1);
+
+  // With the empty column all zero, image 1 is compact again.
+  for (size_t a = 0; a < atlas.attributes.size(); ++a)
+  {
+    const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+    const size_t x = static_cast<size_t>(image.width - 1);
+    std::fill_n(
+      image.data[a].begin() + static_cast<std::ptrdiff_t>((image.width + x) * comps), comps, 0.0f);
+  }
+  tc::writeAtlas(atlas, path);
+  expectBitIdentical(atlas, tc::readAtlas(path));
+  EXPECT_EQ(metadataOf(loadParts(path))["images"][1]["texels"], "new");
 }
 
 TEST_F(AtlasIo, RefusesMissingPartsWrongSizesAndChannels)
@@ -1242,9 +1408,24 @@ TEST_F(AtlasIo, RefusesMissingPartsWrongSizesAndChannels)
     });
   EXPECT_TRUE(mentions(error, "part 'Tensor.2' covers pixels")) << error;
 
-  // The metadata says the image is wider than its parts.
-  error = metadataError([](Json& m) { m["images"][2]["width"] = 7; });
-  EXPECT_TRUE(mentions(error, "the metadata says the image is 7 x 2")) << error;
+  // The metadata says the image is taller than its part, or whole where the part is compact.
+  // (A compact part's size follows from the chart layout: a wrong image size there shows as a
+  // checksum mismatch.)
+  error = metadataError(
+    [](Json& m)
+    {
+      m["images"][2]["height"] = 3;
+      m["images"][2]["texels"] = "all";
+    });
+  EXPECT_TRUE(mentions(
+    error, "part 'Position.2' covers pixels (0, 0) .. (5, 1) but the metadata makes it 6 x 3"))
+    << error;
+  error = metadataError([](Json& m) { m["images"][1]["texels"] = "all"; });
+  EXPECT_TRUE(mentions(error, "but the metadata makes it 8 x 3")) << error;
+  error = metadataError([](Json& m) { m["images"][1]["texels"] = "some"; });
+  EXPECT_TRUE(mentions(error, "images[1].texels that is neither \"new\" nor \"all\"")) << error;
+  error = metadataError([](Json& m) { m["images"][1].erase("texels"); });
+  EXPECT_TRUE(mentions(error, "lacks images[1].texels")) << error;
 
   error = damagedError(
     [](std::vector<ExrPart>& parts)
@@ -1278,7 +1459,7 @@ TEST_F(AtlasIo, RefusesMissingPartsWrongSizesAndChannels)
   error = damagedError(
     [](std::vector<ExrPart>& parts)
     {
-      float& v = partNamed(parts, "Normal.1").channels["Y"][5];
+      float& v = partNamed(parts, "Normal.1").channels["Y"][0];
       v = floatFromBits(bitsOf(v) ^ 1u);
     });
   EXPECT_TRUE(mentions(error, "the texels of part 'Normal.1' do not match their checksum"))

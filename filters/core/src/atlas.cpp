@@ -29,7 +29,7 @@ bool samePosition(const float* a, const float* b)
 }
 } // namespace
 
-void validateAtlas(const Atlas& atlas)
+void validateAtlasLayout(const Atlas& atlas)
 {
   // Attributes: Position and Normal first, then any others, each named once.
   if (atlas.attributes.size() < 2 || atlas.attributes[0].name != kAtlasPosition ||
@@ -76,21 +76,6 @@ void validateAtlas(const Atlas& atlas)
     {
       fail("image " + std::to_string(k) + " has size " + std::to_string(image.width) + " x " +
         std::to_string(image.height));
-    }
-    if (image.data.size() != atlas.attributes.size())
-    {
-      fail("image " + std::to_string(k) + " does not hold every attribute");
-    }
-    for (size_t a = 0; a < atlas.attributes.size(); ++a)
-    {
-      const size_t expected = static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
-        static_cast<size_t>(atlas.attributes[a].components);
-      if (image.data[a].size() != expected)
-      {
-        fail("attribute '" + atlas.attributes[a].name + "' of image " + std::to_string(k) +
-          " has " + std::to_string(image.data[a].size()) + " values, expected " +
-          std::to_string(expected));
-      }
     }
   }
 
@@ -164,7 +149,7 @@ void validateAtlas(const Atlas& atlas)
     }
   }
 
-  // No texel belongs to two charts, and every position is finite.
+  // No texel belongs to two charts.
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
     const AtlasImage& image = atlas.images[k];
@@ -193,6 +178,46 @@ void validateAtlas(const Atlas& atlas)
               std::to_string(k));
           }
           o = static_cast<int32_t>(c);
+        }
+      }
+    }
+  }
+}
+
+void validateAtlas(const Atlas& atlas)
+{
+  validateAtlasLayout(atlas);
+  // Texels: every attribute of every image the right size, every position finite.
+  for (size_t k = 0; k < atlas.images.size(); ++k)
+  {
+    const AtlasImage& image = atlas.images[k];
+    if (image.data.size() != atlas.attributes.size())
+    {
+      fail("image " + std::to_string(k) + " does not hold every attribute");
+    }
+    for (size_t a = 0; a < atlas.attributes.size(); ++a)
+    {
+      const size_t expected = static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
+        static_cast<size_t>(atlas.attributes[a].components);
+      if (image.data[a].size() != expected)
+      {
+        fail("attribute '" + atlas.attributes[a].name + "' of image " + std::to_string(k) +
+          " has " + std::to_string(image.data[a].size()) + " values, expected " +
+          std::to_string(expected));
+      }
+    }
+  }
+  const size_t nc = atlas.charts.size();
+  for (size_t c = 0; c < nc; ++c)
+  {
+    const AtlasChart& chart = atlas.charts[c];
+    for (int32_t d = 0; d <= chart.maxLevel; ++d)
+    {
+      const int32_t n = 1 << d;
+      for (int32_t j = 0; j <= n; ++j)
+      {
+        for (int32_t i = 0; i + j <= n; ++i)
+        {
           const float* p = atlasSample(atlas, static_cast<int32_t>(c), 0, d, i, j);
           if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
           {

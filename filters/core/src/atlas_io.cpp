@@ -136,6 +136,162 @@ Imf::FrameBuffer frameBuffer(float* data, int32_t width, int32_t components)
 }
 
 // ------------------------------------------------------------------------------------------
+// Version 3's compact parts: only the texels that no coarser image holds
+
+/// What a texel of an image holds, for the compact layout.
+enum TexelRole : uint8_t
+{
+  kEmptyTexel = 0, ///< no chart: 0 in every attribute
+  kNewTexel = 1,   ///< a sample that no coarser image holds: stored in the part
+  kInheritedTexel =
+    2, ///< sample (i, j), both even, of level d >= 1: sample (i/2, j/2) of image k + 1
+};
+
+/// Calls f(chart, d, i, j, texel) for every sample of every chart in image k (texel = y * width +
+/// x). The layout must have passed validateAtlasLayout.
+template <class F>
+void forEachSample(const Atlas& atlas, size_t k, F&& f)
+{
+  const size_t width = static_cast<size_t>(atlas.images[k].width);
+  for (const AtlasChart& chart : atlas.charts)
+  {
+    const int32_t d = chart.maxLevel - static_cast<int32_t>(k);
+    if (d < 0)
+    {
+      continue;
+    }
+    const int32_t n = 1 << d;
+    for (int32_t j = 0; j <= n; ++j)
+    {
+      for (int32_t i = 0; i + j <= n; ++i)
+      {
+        const std::array<int32_t, 2> xy = atlasTexel(chart, d, i, j);
+        f(chart, d, i, j, static_cast<size_t>(xy[1]) * width + static_cast<size_t>(xy[0]));
+      }
+    }
+  }
+}
+
+/// The role of every texel of image k, rows of the image's width.
+std::vector<uint8_t> texelRoles(const Atlas& atlas, size_t k)
+{
+  const AtlasImage& image = atlas.images[k];
+  std::vector<uint8_t> roles(
+    static_cast<size_t>(image.width) * static_cast<size_t>(image.height), kEmptyTexel);
+  forEachSample(atlas, k,
+    [&roles](const AtlasChart&, int32_t d, int32_t i, int32_t j, size_t texel)
+    { roles[texel] = d >= 1 && i % 2 == 0 && j % 2 == 0 ? kInheritedTexel : kNewTexel; });
+  return roles;
+}
+
+/// Calls f(texel of image k, texel of image k + 1) for every inherited texel of image k.
+template <class F>
+void forEachInherited(const Atlas& atlas, size_t k, F&& f)
+{
+  const size_t coarseWidth =
+    k + 1 < atlas.images.size() ? static_cast<size_t>(atlas.images[k + 1].width) : 0;
+  forEachSample(atlas, k,
+    [&](const AtlasChart& chart, int32_t d, int32_t i, int32_t j, size_t texel)
+    {
+      if (d >= 1 && i % 2 == 0 && j % 2 == 0)
+      {
+        const std::array<int32_t, 2> xy = atlasTexel(chart, d - 1, i / 2, j / 2);
+        f(texel, static_cast<size_t>(xy[1]) * coarseWidth + static_cast<size_t>(xy[0]));
+      }
+    });
+}
+
+/// Height of a compact part of an image `width` texels wide: rows enough for its new texels
+/// (at least 1).
+int32_t compactHeight(const std::vector<uint8_t>& roles, int32_t width)
+{
+  const size_t fresh = static_cast<size_t>(std::count(roles.begin(), roles.end(), kNewTexel));
+  const size_t w = static_cast<size_t>(width);
+  return static_cast<int32_t>(std::max<size_t>(1, (fresh + w - 1) / w));
+}
+
+/// Whether image k can be stored compactly: every inherited texel bit-identical to its coarser
+/// copy and every empty texel all zero bits, in every attribute. The pipeline's point-sampled
+/// pyramid always is; an atlas made otherwise is stored whole, so every atlas reads back exactly.
+bool compactable(const Atlas& atlas, size_t k, const std::vector<uint8_t>& roles)
+{
+  for (size_t a = 0; a < atlas.attributes.size(); ++a)
+  {
+    const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+    const float* fine = atlas.images[k].data[a].data();
+    for (size_t t = 0; t < roles.size(); ++t)
+    {
+      if (roles[t] != kEmptyTexel)
+      {
+        continue;
+      }
+      for (size_t c = 0; c < comps; ++c)
+      {
+        uint32_t bits = 0;
+        std::memcpy(&bits, fine + t * comps + c, sizeof(bits));
+        if (bits != 0)
+        {
+          return false;
+        }
+      }
+    }
+    if (k + 1 == atlas.images.size())
+    {
+      continue;
+    }
+    const float* coarse = atlas.images[k + 1].data[a].data();
+    bool same = true;
+    forEachInherited(atlas, k,
+      [&](size_t texel, size_t from)
+      {
+        same = same &&
+          std::memcmp(fine + texel * comps, coarse + from * comps, comps * sizeof(float)) == 0;
+      });
+    if (!same)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The new texels of `data` (`comps` floats each) in texel order, as `rows` rows of the image's
+/// width: the last row ends in zeros.
+std::vector<float> compactTexels(const std::vector<float>& data, const std::vector<uint8_t>& roles,
+  int32_t width, int32_t rows, int32_t comps)
+{
+  const size_t nc = static_cast<size_t>(comps);
+  std::vector<float> out(static_cast<size_t>(width) * static_cast<size_t>(rows) * nc, 0.0f);
+  auto to = out.begin();
+  for (size_t t = 0; t < roles.size(); ++t)
+  {
+    if (roles[t] == kNewTexel)
+    {
+      to = std::copy(data.begin() + static_cast<std::ptrdiff_t>(t * nc),
+        data.begin() + static_cast<std::ptrdiff_t>((t + 1) * nc), to);
+    }
+  }
+  return out;
+}
+
+/// The inverse of compactTexels for the new texels: puts them back into `data`.
+void expandTexels(const std::vector<float>& compact, const std::vector<uint8_t>& roles,
+  int32_t comps, std::vector<float>& data)
+{
+  const size_t nc = static_cast<size_t>(comps);
+  auto from = compact.begin();
+  for (size_t t = 0; t < roles.size(); ++t)
+  {
+    if (roles[t] == kNewTexel)
+    {
+      std::copy(from, from + static_cast<std::ptrdiff_t>(nc),
+        data.begin() + static_cast<std::ptrdiff_t>(t * nc));
+      from += static_cast<std::ptrdiff_t>(nc);
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------
 // Writing
 
 /// A double as JSON: numbers print to the shortest text that reads back to the same bits (the
@@ -162,8 +318,10 @@ bool isUtf8(const std::string& text)
   }
 }
 
-/// The atlas metadata (everything but the texels) as JSON; `crcs` per image, per attribute.
-Json atlasMetadata(const Atlas& atlas, const std::vector<std::vector<uint32_t>>& crcs)
+/// The atlas metadata (everything but the texels) as JSON; `crcs` per image, per attribute;
+/// `compact` per image: whether its parts hold only its new texels.
+Json atlasMetadata(const Atlas& atlas, const std::vector<std::vector<uint32_t>>& crcs,
+  const std::vector<uint8_t>& compact)
 {
   Json root;
   root["format"] = kFormatName;
@@ -181,8 +339,9 @@ Json atlasMetadata(const Atlas& atlas, const std::vector<std::vector<uint32_t>>&
   root["images"] = Json::array();
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
-    root["images"].push_back({ { "width", atlas.images[k].width },
-      { "height", atlas.images[k].height }, { "crc32", crcs[k] } });
+    root["images"].push_back(
+      { { "width", atlas.images[k].width }, { "height", atlas.images[k].height },
+        { "texels", compact[k] ? "new" : "all" }, { "crc32", crcs[k] } });
   }
   root["charts"] = Json::array();
   for (const AtlasChart& chart : atlas.charts)
@@ -534,8 +693,8 @@ public:
 };
 
 /// The atlas without texels, from the metadata JSON, plus the checksums per image and attribute.
-Atlas parseMetadata(
-  const std::string& path, const Json& root, std::vector<std::vector<uint32_t>>& crcs)
+Atlas parseMetadata(const std::string& path, const Json& root,
+  std::vector<std::vector<uint32_t>>& crcs, std::vector<uint8_t>& compact)
 {
   const MetadataReader in(path);
   Atlas atlas;
@@ -576,6 +735,8 @@ Atlas parseMetadata(
   }
   const Json& images = in.array(in.member(root, "images", "the root"), 1, 21, "images");
   crcs.assign(images.size(), {});
+  compact.assign(images.size(), 0);
+  const bool hasLayout = root["version"].get<int64_t>() >= 3;
   for (size_t k = 0; k < images.size(); ++k)
   {
     const std::string where = "images[" + std::to_string(k) + "]";
@@ -584,6 +745,15 @@ Atlas parseMetadata(
       in.integer(in.member(images[k], "width", where), 1, 1 << 16, where + ".width"));
     image.height = static_cast<int32_t>(
       in.integer(in.member(images[k], "height", where), 1, 1 << 16, where + ".height"));
+    if (hasLayout)
+    {
+      const Json& texels = in.member(images[k], "texels", where);
+      if (!texels.is_string() || (texels != "new" && texels != "all"))
+      {
+        in.fail("has " + where + ".texels that is neither \"new\" nor \"all\"");
+      }
+      compact[k] = texels == "new";
+    }
     const Json& crc = in.array(
       in.member(images[k], "crc32", where), attributes.size(), attributes.size(), where + ".crc32");
     for (size_t a = 0; a < crc.size(); ++a)
@@ -774,7 +944,8 @@ Json readMetadata(const std::string& path, const Imf::Header& first)
       std::to_string(version->get<int64_t>()) + " but this TriChart reads versions up to " +
       std::to_string(kAtlasFileVersion) + "; update TriChart to read it");
   }
-  // Version 1 stored the text plainly, version 2 compressed: anything else is not our writer's.
+  // Version 1 stored the text plainly, versions 2 and 3 compressed: anything else is not our
+  // writer's.
   if (compressed != (version->get<int64_t>() >= 2))
   {
     throw InputError("cannot read atlas " + path + ": its metadata says format version " +
@@ -792,9 +963,10 @@ Json readMetadata(const std::string& path, const Imf::Header& first)
   return root;
 }
 
-/// Refuses a part whose type, size or channels differ from what the metadata says.
+/// Refuses a part whose type, size (width x height pixels) or channels differ from what the
+/// metadata says.
 void checkPart(const std::string& path, const std::string& name, const Imf::Header& header,
-  const AtlasImage& image, const AtlasAttribute& attribute)
+  int32_t width, int32_t height, const AtlasAttribute& attribute)
 {
   const std::string prefix = "cannot read atlas " + path + ": part '" + name + "' ";
   const std::string suffix = "; the file is damaged or was not written by TriChart";
@@ -803,13 +975,13 @@ void checkPart(const std::string& path, const std::string& name, const Imf::Head
     throw InputError(prefix + "is not a scan-line image" + suffix);
   }
   const Imath::Box2i& window = header.dataWindow();
-  if (window.min.x != 0 || window.min.y != 0 || window.max.x != image.width - 1 ||
-    window.max.y != image.height - 1)
+  if (window.min.x != 0 || window.min.y != 0 || window.max.x != width - 1 ||
+    window.max.y != height - 1)
   {
     throw InputError(prefix + "covers pixels (" + std::to_string(window.min.x) + ", " +
       std::to_string(window.min.y) + ") .. (" + std::to_string(window.max.x) + ", " +
-      std::to_string(window.max.y) + ") but the metadata says the image is " +
-      std::to_string(image.width) + " x " + std::to_string(image.height) + suffix);
+      std::to_string(window.max.y) + ") but the metadata makes it " + std::to_string(width) +
+      " x " + std::to_string(height) + suffix);
   }
   std::set<std::string> expected;
   for (const std::string& channel : channelNames(attribute.components))
@@ -879,7 +1051,18 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
   Imf::MultiPartInputFile file(path.c_str());
   const Json root = readMetadata(path, file.header(0));
   std::vector<std::vector<uint32_t>> crcs;
-  Atlas atlas = parseMetadata(path, root, crcs);
+  std::vector<uint8_t> compact;
+  Atlas atlas = parseMetadata(path, root, crcs, compact);
+  try
+  {
+    // Compact parts are placed by the chart layout: it must hold before any texel is.
+    validateAtlasLayout(atlas);
+  }
+  catch (const InputError& invalid)
+  {
+    throw InputError("cannot read atlas " + path + ": " + invalid.what() +
+      " (the file is damaged or was written by a faulty program)");
+  }
 
   // Parts by name; exactly one per attribute and image.
   std::map<std::string, int> parts;
@@ -898,9 +1081,20 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
       std::to_string(atlas.attributes.size()) + " attributes x " +
       std::to_string(atlas.images.size()) + " images); the file is damaged");
   }
+  // Per image: texel roles and the part width (compact images), checked against every part.
+  std::vector<std::vector<uint8_t>> roles(atlas.images.size());
+  std::vector<int32_t> partHeight(atlas.images.size());
   uint64_t totalFloats = 0;
+  uint64_t storedFloats = 0;
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
+    const AtlasImage& image = atlas.images[k];
+    partHeight[k] = image.height;
+    if (compact[k])
+    {
+      roles[k] = texelRoles(atlas, k);
+      partHeight[k] = compactHeight(roles[k], image.width);
+    }
     for (size_t a = 0; a < atlas.attributes.size(); ++a)
     {
       const std::string name = partName(atlas.attributes[a].name, k);
@@ -910,8 +1104,11 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
         throw InputError("cannot read atlas " + path + ": part '" + name +
           "' is missing; the file is damaged or was not written by TriChart");
       }
-      checkPart(path, name, file.header(it->second), atlas.images[k], atlas.attributes[a]);
-      totalFloats += floatCount(atlas.images[k], atlas.attributes[a]);
+      checkPart(
+        path, name, file.header(it->second), image.width, partHeight[k], atlas.attributes[a]);
+      totalFloats += floatCount(image, atlas.attributes[a]);
+      storedFloats += static_cast<uint64_t>(image.width) * static_cast<uint64_t>(partHeight[k]) *
+        static_cast<uint64_t>(atlas.attributes[a].components);
     }
   }
   if (totalFloats * sizeof(float) > kMaxCompressionRatio * std::max<uint64_t>(fileSize, 1))
@@ -921,8 +1118,9 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
       std::to_string(fileSize) + " bytes, more than any compression gives; the file is damaged");
   }
 
+  // Coarsest image first: a compact image takes its inherited texels from the next coarser one.
   uint64_t floatsRead = 0;
-  for (size_t k = 0; k < atlas.images.size(); ++k)
+  for (size_t k = atlas.images.size(); k-- > 0;)
   {
     AtlasImage& image = atlas.images[k];
     image.data.resize(atlas.attributes.size());
@@ -932,16 +1130,36 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
       const int32_t components = atlas.attributes[a].components;
       std::vector<float>& data = image.data[a];
       data.assign(floatCount(image, atlas.attributes[a]), 0.0f);
+      std::vector<float> stored;
+      if (compact[k])
+      {
+        stored.assign(static_cast<size_t>(image.width) * static_cast<size_t>(partHeight[k]) *
+            static_cast<size_t>(components),
+          0.0f);
+      }
       Imf::InputPart part(file, parts.at(name));
-      part.setFrameBuffer(frameBuffer(data.data(), image.width, components));
+      part.setFrameBuffer(
+        frameBuffer(compact[k] ? stored.data() : data.data(), image.width, components));
       const size_t rowFloats = static_cast<size_t>(image.width) * static_cast<size_t>(components);
       const int32_t block = rowsPerBlock(rowFloats);
-      for (int32_t y = 0; y < image.height; y += block)
+      for (int32_t y = 0; y < partHeight[k]; y += block)
       {
-        const int32_t last = std::min(image.height, y + block) - 1;
+        const int32_t last = std::min(partHeight[k], y + block) - 1;
         part.readPixels(y, last);
         floatsRead += static_cast<uint64_t>(last - y + 1) * rowFloats;
-        progress.report(0.95 * static_cast<double>(floatsRead) / static_cast<double>(totalFloats));
+        progress.report(0.95 * static_cast<double>(floatsRead) / static_cast<double>(storedFloats));
+      }
+      if (compact[k])
+      {
+        expandTexels(stored, roles[k], components, data);
+        const size_t comps = static_cast<size_t>(components);
+        const float* coarse =
+          k + 1 < atlas.images.size() ? atlas.images[k + 1].data[a].data() : nullptr;
+        forEachInherited(atlas, k,
+          [&](size_t texel, size_t from) {
+            std::copy(
+              coarse + from * comps, coarse + (from + 1) * comps, data.begin() + texel * comps);
+          });
       }
       if (crc32Of(data.data(), data.size() * sizeof(float)) != crcs[k][a])
       {
@@ -983,35 +1201,50 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
   }
   checkWritable(atlas, path);
 
-  // Metadata with the checksum of every part, then one header per part.
-  std::vector<std::vector<uint32_t>> crcs(atlas.images.size());
+  // Per image: compact (its parts hold only the texels no coarser image holds) when the
+  // texels allow it, the part width, and the checksum of every attribute.
+  const size_t numImages = atlas.images.size();
+  std::vector<std::vector<uint8_t>> roles(numImages);
+  std::vector<uint8_t> compact(numImages, 0);
+  std::vector<int32_t> partHeight(numImages);
+  std::vector<std::vector<uint32_t>> crcs(numImages);
   uint64_t totalFloats = 0;
   int32_t displayWidth = 1;
   int32_t displayHeight = 1;
-  for (size_t k = 0; k < atlas.images.size(); ++k)
+  for (size_t k = 0; k < numImages; ++k)
   {
-    for (const std::vector<float>& data : atlas.images[k].data)
+    const AtlasImage& image = atlas.images[k];
+    roles[k] = texelRoles(atlas, k);
+    compact[k] = compactable(atlas, k, roles[k]);
+    partHeight[k] = compact[k] ? compactHeight(roles[k], image.width) : image.height;
+    if (!compact[k])
     {
-      crcs[k].push_back(crc32Of(data.data(), data.size() * sizeof(float)));
-      totalFloats += data.size();
+      roles[k].clear();
     }
-    displayWidth = std::max(displayWidth, atlas.images[k].width);
-    displayHeight = std::max(displayHeight, atlas.images[k].height);
+    for (size_t a = 0; a < atlas.attributes.size(); ++a)
+    {
+      crcs[k].push_back(crc32Of(image.data[a].data(), image.data[a].size() * sizeof(float)));
+      totalFloats += static_cast<uint64_t>(image.width) * static_cast<uint64_t>(partHeight[k]) *
+        static_cast<uint64_t>(atlas.attributes[a].components);
+    }
+    displayWidth = std::max(displayWidth, image.width);
+    displayHeight = std::max(displayHeight, image.height);
   }
   // Bytes that are not UTF-8 can only come from `source` here (names were checked).
   const std::string metadata =
-    atlasMetadata(atlas, crcs).dump(-1, ' ', false, Json::error_handler_t::replace);
+    atlasMetadata(atlas, crcs, compact).dump(-1, ' ', false, Json::error_handler_t::replace);
   const std::string packedMetadata = compressMetadata(metadata, path);
 
+  // One header per part, coarsest image first, so that a file read front to back refines.
   const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(displayWidth - 1, displayHeight - 1));
   std::vector<Imf::Header> headers;
-  for (size_t k = 0; k < atlas.images.size(); ++k)
+  for (size_t k = numImages; k-- > 0;)
   {
     const AtlasImage& image = atlas.images[k];
     for (const AtlasAttribute& attribute : atlas.attributes)
     {
       Imf::Header header(
-        display, Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(image.width - 1, image.height - 1)));
+        display, Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(image.width - 1, partHeight[k] - 1)));
       header.setName(partName(attribute.name, k));
       header.setType(Imf::SCANLINEIMAGE);
       header.compression() = Imf::ZIP_COMPRESSION;
@@ -1040,21 +1273,25 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
       Imf::MultiPartOutputFile file(stream, headers.data(), static_cast<int>(headers.size()));
       uint64_t floatsWritten = 0;
       int index = 0;
-      for (size_t k = 0; k < atlas.images.size(); ++k)
+      for (size_t k = numImages; k-- > 0;)
       {
         const AtlasImage& image = atlas.images[k];
         for (size_t a = 0; a < atlas.attributes.size(); ++a, ++index)
         {
           const int32_t components = atlas.attributes[a].components;
+          const std::vector<float> packed = compact[k]
+            ? compactTexels(image.data[a], roles[k], image.width, partHeight[k], components)
+            : std::vector<float>();
           Imf::OutputPart part(file, index);
           part.setFrameBuffer(
-            frameBuffer(const_cast<float*>(image.data[a].data()), image.width, components));
+            frameBuffer(const_cast<float*>(compact[k] ? packed.data() : image.data[a].data()),
+              image.width, components));
           const size_t rowFloats =
             static_cast<size_t>(image.width) * static_cast<size_t>(components);
           const int32_t block = rowsPerBlock(rowFloats);
-          for (int32_t y = 0; y < image.height; y += block)
+          for (int32_t y = 0; y < partHeight[k]; y += block)
           {
-            const int32_t rows = std::min(block, image.height - y);
+            const int32_t rows = std::min(block, partHeight[k] - y);
             part.writePixels(rows);
             floatsWritten += static_cast<uint64_t>(rows) * rowFloats;
             progress.report(

@@ -128,4 +128,10 @@ inline const float* atlasSample(
 /// by two charts, neighbour symmetry, bit-identical shared sides and corners).
 /// @throws InputError naming the first chart and rule that fail
 void validateAtlas(const Atlas& atlas);
+
+/// The part of validateAtlas that needs no texel: attributes, image sizes, chart fields,
+/// neighbours and partners, every chart's grid inside its images and no texel shared by two
+/// charts (image data may be empty). What makes atlasTexel safe to index an image with.
+/// @throws InputError naming the first chart and rule that fail
+void validateAtlasLayout(const Atlas& atlas);
 } // namespace tc
