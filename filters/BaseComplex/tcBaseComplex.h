@@ -5,8 +5,9 @@
  * vertex over it (Feng et al. 2010, section 5.1; Lee et al. 1998).
  *
  * Quadric-error half-edge collapses, each keeping one endpoint, simplify the mesh until it has
- * TargetFaces triangles (or the next collapse would exceed MaxError, a fraction of the squared
- * bounding-box diagonal). Feature curves simplify only along themselves and become base edges;
+ * TargetFaces triangles or the next collapse would exceed MaxError, a fraction of the squared
+ * bounding-box diagonal (default 1e-4: base triangles within about 1% of the diagonal, RMS, of
+ * their surface; 0 lets the count alone decide). Feature curves simplify only along themselves and become base edges;
  * corners are never removed; no collapse changes the topology or flips a triangle. As vertices
  * are removed, MAPS keeps each one's position on the coarser mesh, so that every input vertex
  * ends with a base face and barycentric coordinates.
@@ -55,7 +56,7 @@ private:
   void operator=(const tcBaseComplex&) = delete;
 
   vtkIdType TargetFaces = 100;
-  double MaxError = 0.0;
+  double MaxError = 1e-4;
 };
 
 #endif

@@ -83,7 +83,8 @@ def cmd_build(args):
                        image=not args.no_image,
                        cluster_options={"number_of_clusters": args.clusters},
                        feature_options={"crease_angle": args.crease_angle},
-                       base_options={"target_faces": args.base_faces},
+                       base_options={"target_faces": args.base_faces,
+                                     "max_error": args.max_error},
                        geometry_options=options)
     finally:
         if bar:
@@ -168,6 +169,10 @@ def main(argv=None):
                         "lines keep (default 30; organic meshes simplify further with 60)")
     p.add_argument("--base-faces", type=int, default=100,
                    help="target number of base-complex triangles (default 100)")
+    p.add_argument("--max-error", type=float, default=1e-4,
+                   help="largest quadric error of a base-complex collapse, as a fraction of "
+                        "the squared diagonal (default 1e-4, about 1%% of the diagonal RMS; "
+                        "0: only --base-faces decides)")
     p.add_argument("--max-level", type=int, default=8,
                    help="largest chart level, 2^d + 1 samples per side (default 8)")
     p.add_argument("--budget", type=int, default=0,
@@ -200,6 +205,8 @@ def main(argv=None):
             parser.error(f"--stretch-iterations must be 0 .. 100, not {args.stretch_iterations}")
         if not 0.0 <= args.crease_angle <= 180.0:
             parser.error(f"--crease-angle must be 0 .. 180 degrees, not {args.crease_angle}")
+        if not 0.0 <= args.max_error <= 1.0:
+            parser.error(f"--max-error must be 0 .. 1, not {args.max_error}")
 
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()

@@ -682,6 +682,7 @@ TEST(BaseComplex, Bunny00ReachesATargetOf100)
   const tctest::Features features = tctest::sharpFeatures(mesh);
   tc::BaseComplexOptions options;
   options.targetFaces = 100;
+  options.maxError = 0.0; // the count alone: target control
   const tc::BaseComplexResult r = tc::buildBaseComplex(
     mesh, features.featureVertex, features.cornerVertex, features.featureEdges, options);
   const size_t faces = r.baseTriangles.size() / 3;
@@ -699,18 +700,22 @@ TEST(BaseComplex, Bunny00ReachesATargetOf100)
 
 TEST(BaseComplex, MaxErrorStopsTheSimplificationEarly)
 {
+  // The bound stops nothing above one face per 32 input points (1839 / 32 = 57 faces here),
+  // then the first collapse above it ends the simplification.
   const tc::TriMesh mesh = tctest::loadMesh(tctest::testingData("meshes/bunny_npm.off"));
+  ASSERT_EQ(mesh.numPoints(), 1839);
   tc::BaseComplexOptions options;
-  options.targetFaces = 100;
+  options.targetFaces = 20;
   options.maxError = 1e-6;
   const tc::BaseComplexResult bounded = tc::buildBaseComplex(mesh, {}, {}, {}, options);
   EXPECT_FALSE(bounded.reachedTarget);
-  EXPECT_LE(bounded.maxCollapseError, options.maxError);
-  EXPECT_GT(bounded.baseTriangles.size() / 3, 100u);
+  EXPECT_LE(bounded.baseTriangles.size() / 3, 57u);
+  EXPECT_GT(bounded.baseTriangles.size() / 3, 50u);
   options.maxError = 0.0;
   const tc::BaseComplexResult free = tc::buildBaseComplex(mesh, {}, {}, {}, options);
   EXPECT_TRUE(free.reachedTarget);
   EXPECT_GT(free.maxCollapseError, 1e-6);
+  EXPECT_GT(free.maxCollapseError, bounded.maxCollapseError);
 }
 
 TEST(BaseComplex, IsDeterministic)

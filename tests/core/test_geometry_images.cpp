@@ -1345,7 +1345,8 @@ TEST(GeometryImages, OrientedBoxContainsEveryPatchPointAndSample)
       outside, skew, volume, aabbVolume);
     // Float samples may poke out by their rounding.
     EXPECT_LT(outside, 1e-6);
-    EXPECT_LT(skew, 1e-9);
+    // Corners are stored to 8 significant digits: the axes stay square to about 1e-7.
+    EXPECT_LT(skew, 1e-6);
     EXPECT_LE(volume, aabbVolume + 1e-12);
   }
 }

@@ -155,32 +155,19 @@ void validateAtlasLayout(const Atlas& atlas)
     const AtlasImage& image = atlas.images[k];
     std::vector<int32_t> owner(
       static_cast<size_t>(image.width) * static_cast<size_t>(image.height), -1);
-    for (size_t c = 0; c < nc; ++c)
-    {
-      const AtlasChart& chart = atlas.charts[c];
-      const int32_t d = chart.maxLevel - static_cast<int32_t>(k);
-      if (d < 0)
+    forEachImageSample(atlas, k,
+      [&](int32_t c, int32_t, int32_t, int32_t, size_t texel)
       {
-        continue;
-      }
-      const int32_t n = 1 << d;
-      for (int32_t j = 0; j <= n; ++j)
-      {
-        for (int32_t i = 0; i + j <= n; ++i)
+        int32_t& o = owner[texel];
+        if (o >= 0)
         {
-          const std::array<int32_t, 2> xy = atlasTexel(chart, d, i, j);
-          int32_t& o = owner[static_cast<size_t>(xy[1]) * static_cast<size_t>(image.width) +
-            static_cast<size_t>(xy[0])];
-          if (o >= 0)
-          {
-            fail(chartName(c) + " and " + chartName(static_cast<size_t>(o)) + " share texel (" +
-              std::to_string(xy[0]) + ", " + std::to_string(xy[1]) + ") of image " +
-              std::to_string(k));
-          }
-          o = static_cast<int32_t>(c);
+          fail(chartName(static_cast<size_t>(c)) + " and " + chartName(static_cast<size_t>(o)) +
+            " share texel (" + std::to_string(texel % static_cast<size_t>(image.width)) + ", " +
+            std::to_string(texel / static_cast<size_t>(image.width)) + ") of image " +
+            std::to_string(k));
         }
-      }
-    }
+        o = c;
+      });
   }
 }
 

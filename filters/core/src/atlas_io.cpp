@@ -147,39 +147,14 @@ enum TexelRole : uint8_t
     2, ///< sample (i, j), both even, of level d >= 1: sample (i/2, j/2) of image k + 1
 };
 
-/// Calls f(chart, d, i, j, texel) for every sample of every chart in image k (texel = y * width +
-/// x). The layout must have passed validateAtlasLayout.
-template <class F>
-void forEachSample(const Atlas& atlas, size_t k, F&& f)
-{
-  const size_t width = static_cast<size_t>(atlas.images[k].width);
-  for (const AtlasChart& chart : atlas.charts)
-  {
-    const int32_t d = chart.maxLevel - static_cast<int32_t>(k);
-    if (d < 0)
-    {
-      continue;
-    }
-    const int32_t n = 1 << d;
-    for (int32_t j = 0; j <= n; ++j)
-    {
-      for (int32_t i = 0; i + j <= n; ++i)
-      {
-        const std::array<int32_t, 2> xy = atlasTexel(chart, d, i, j);
-        f(chart, d, i, j, static_cast<size_t>(xy[1]) * width + static_cast<size_t>(xy[0]));
-      }
-    }
-  }
-}
-
 /// The role of every texel of image k, rows of the image's width.
 std::vector<uint8_t> texelRoles(const Atlas& atlas, size_t k)
 {
   const AtlasImage& image = atlas.images[k];
   std::vector<uint8_t> roles(
     static_cast<size_t>(image.width) * static_cast<size_t>(image.height), kEmptyTexel);
-  forEachSample(atlas, k,
-    [&roles](const AtlasChart&, int32_t d, int32_t i, int32_t j, size_t texel)
+  forEachImageSample(atlas, k,
+    [&roles](int32_t, int32_t d, int32_t i, int32_t j, size_t texel)
     { roles[texel] = d >= 1 && i % 2 == 0 && j % 2 == 0 ? kInheritedTexel : kNewTexel; });
   return roles;
 }
@@ -190,12 +165,13 @@ void forEachInherited(const Atlas& atlas, size_t k, F&& f)
 {
   const size_t coarseWidth =
     k + 1 < atlas.images.size() ? static_cast<size_t>(atlas.images[k + 1].width) : 0;
-  forEachSample(atlas, k,
-    [&](const AtlasChart& chart, int32_t d, int32_t i, int32_t j, size_t texel)
+  forEachImageSample(atlas, k,
+    [&](int32_t c, int32_t d, int32_t i, int32_t j, size_t texel)
     {
       if (d >= 1 && i % 2 == 0 && j % 2 == 0)
       {
-        const std::array<int32_t, 2> xy = atlasTexel(chart, d - 1, i / 2, j / 2);
+        const std::array<int32_t, 2> xy =
+          atlasTexel(atlas.charts[static_cast<size_t>(c)], d - 1, i / 2, j / 2);
         f(texel, static_cast<size_t>(xy[1]) * coarseWidth + static_cast<size_t>(xy[0]));
       }
     });

@@ -42,6 +42,12 @@ namespace tc
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
+/// BaseComplexOptions::maxError stops the simplification only once the base complex has at most
+/// one face per this many input points (64 input triangles each on average): under the geometry
+/// images' default budget of one sample per point, a chart then averages 32 samples (level 3
+/// has 45), where smaller charts would be left with a few samples each.
+constexpr int64_t kPointsPerBoundedFace = 32;
+
 /// Barycentric slack below which a point still counts as inside a flat triangle (round-off of
 /// the z^a map and of the 2x2 solves); beyond it the point is snapped (MAPS flip repair).
 constexpr double kInsideSlack = 1e-12;
@@ -1368,10 +1374,42 @@ BaseComplexResult Simplifier::run(const Progress& progress)
 
   BaseComplexResult result;
   const int64_t target = std::max<int64_t>(4, Options_.targetFaces);
+  // The error bound never leaves more than one face per kPointsPerBoundedFace input points: on a
+  // coarse input it would leave charts of a few samples each. Vertices whose collapses it
+  // refused wait in `deferred`; should the simplification end above that count, the bound is
+  // lifted until the count is reached, and they are queued again.
+  const int64_t boundedFaces = NumVertices_ / kPointsPerBoundedFace;
+  bool bounded = Options_.maxError > 0;
+  std::vector<int32_t> deferred;
   const double toRemove = std::max<double>(1.0, static_cast<double>(NumFaces_ - target));
   int64_t pops = 0;
-  while (FaceCount_ > target && !Heap_.empty())
+  while (FaceCount_ > target)
   {
+    if (Heap_.empty())
+    {
+      if (!bounded || FaceCount_ <= boundedFaces || deferred.empty())
+      {
+        break;
+      }
+      bounded = false;
+      for (int32_t v : deferred)
+      {
+        if (!Removed_[v] && !Pinned_[v])
+        {
+          this->gatherCandidates(v);
+          if (!Candidates_.empty())
+          {
+            this->push(v, Candidates_.front().cost);
+          }
+        }
+      }
+      deferred.clear();
+      continue;
+    }
+    if (!bounded && Options_.maxError > 0 && FaceCount_ <= boundedFaces)
+    {
+      bounded = true; // the count is reached: the bound stops the rest
+    }
     if ((++pops & 4095) == 0)
     {
       simplify.report(std::min(1.0, (NumFaces_ - FaceCount_) / toRemove));
@@ -1398,7 +1436,12 @@ BaseComplexResult Simplifier::run(const Progress& progress)
       }
       const double error = cand.cost /
         std::max(Area_[u] + Area_[cand.target], std::numeric_limits<double>::min()) / Diag2_;
-      if ((Options_.maxError > 0 && error > Options_.maxError) || !this->prepare(u, cand.halfEdge))
+      if (bounded && error > Options_.maxError)
+      {
+        deferred.push_back(u);
+        continue;
+      }
+      if (!this->prepare(u, cand.halfEdge))
       {
         continue;
       }

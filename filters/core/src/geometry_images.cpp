@@ -12,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -940,6 +942,57 @@ Box boxInFrame(const std::vector<Vec3>& points, const Eigen::Matrix3d& R)
   return b;
 }
 
+/// `x` to 8 significant decimal digits: the chart table's doubles (box corners, level errors)
+/// feed estimates that the renderer evaluates in float (7.2 digits), and as the shortest decimal
+/// text that reads back to the same double they take half the atlas file's metadata bytes of
+/// full-precision values (on fandisk_large's 666 charts the box alone took 73 of 120 KB).
+double storageRounded(double x)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.8g", x);
+  return std::strtod(text, nullptr);
+}
+
+/// The box with every corner rounded by storageRounded after it grew on every side by more than
+/// that rounding can move a corner (3 x 5e-8 of the largest coordinate), so it still holds every
+/// point.
+std::array<double, 12> storableBox(const std::array<double, 12>& corners)
+{
+  double largest = 0.0;
+  for (double x : corners)
+  {
+    largest = std::max(largest, std::abs(x));
+  }
+  const double grow = 2e-7 * largest;
+  std::array<double, 12> out = corners;
+  Vec3 c0(corners[0], corners[1], corners[2]);
+  Vec3 shift = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec3 axis = Vec3(corners[3 + 3 * k], corners[4 + 3 * k], corners[5 + 3 * k]) - c0;
+    const double length = axis.norm();
+    const Vec3 unit = length > 0.0 ? Vec3(axis / length) : Vec3::Zero();
+    shift -= grow * unit;
+    for (int x = 0; x < 3; ++x)
+    {
+      out[3 + 3 * k + x] += 2.0 * grow * unit[x];
+    }
+  }
+  for (int x = 0; x < 3; ++x)
+  {
+    out[x] += shift[x];
+    for (int k = 0; k < 3; ++k)
+    {
+      out[3 + 3 * k + x] += shift[x];
+    }
+  }
+  for (double& x : out)
+  {
+    x = storageRounded(x);
+  }
+  return out;
+}
+
 /// Oriented bounding box along the principal axes of the patch's points. Written by hand
 /// rather than with CGAL::oriented_bounding_box: CGAL's optimal-box search costs 20-50 ms per
 /// chart whatever its size (measured), tens of seconds for the thousand charts a detailed mesh
@@ -1732,7 +1785,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       {
         pts[v] = pointOf(mesh, p.points[v]);
       }
-      ch.box = orientedBox(pts).corners;
+      ch.box = storableBox(orientedBox(pts).corners);
     },
     progress.sub(0.5, 0.85), blockSteps(nc));
 
@@ -1759,6 +1812,10 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   {
     atlas.charts[c].maxLevel = level[c];
     atlas.charts[c].levelError.resize(static_cast<size_t>(level[c]) + 1);
+    for (double& e : atlas.charts[c].levelError)
+    {
+      e = storageRounded(e);
+    }
   }
 
   // 6. Packing (paper 5.2): charts sorted by d_max, each paired with the next closest one; one

@@ -34,7 +34,8 @@ constexpr const char* kAtlasNormal = "Normal";
 struct AtlasChart
 {
   int32_t maxLevel = 0; ///< d_max: finest level, 2^d_max + 1 samples per side
-  std::array<int32_t, 3> cornerVertex{ -1, -1, -1 };  ///< input point id of the base vertex at corner k
+  std::array<int32_t, 3> cornerVertex{ -1, -1,
+    -1 }; ///< input point id of the base vertex at corner k
   std::array<int32_t, 3> neighborChart{ -1, -1, -1 }; ///< chart across side k
   std::array<int32_t, 3> neighborSide{ -1, -1, -1 };  ///< that chart's side (it runs the other way)
   std::array<uint8_t, 3> featureSide{ 0, 0, 0 };      ///< 1 if side k follows a feature curve
@@ -122,6 +123,34 @@ inline const float* atlasSample(
   return image.data[static_cast<size_t>(attribute)].data() +
     (static_cast<size_t>(xy[1]) * static_cast<size_t>(image.width) + static_cast<size_t>(xy[0])) *
     static_cast<size_t>(comps);
+}
+
+/// Calls f(c, d, i, j, texel) for every sample (i, j) of every chart c that image k holds (at its
+/// level d = maxLevel - k), with texel = y * width + x of that sample in the image. The layout
+/// must be valid (validateAtlasLayout) for every texel to lie inside the image.
+template <class F>
+void forEachImageSample(const Atlas& atlas, size_t k, F&& f)
+{
+  const size_t width = static_cast<size_t>(atlas.images[k].width);
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    const AtlasChart& chart = atlas.charts[c];
+    const int32_t d = chart.maxLevel - static_cast<int32_t>(k);
+    if (d < 0)
+    {
+      continue;
+    }
+    const int32_t n = 1 << d;
+    for (int32_t j = 0; j <= n; ++j)
+    {
+      for (int32_t i = 0; i + j <= n; ++i)
+      {
+        const std::array<int32_t, 2> xy = atlasTexel(chart, d, i, j);
+        f(static_cast<int32_t>(c), d, i, j,
+          static_cast<size_t>(xy[1]) * width + static_cast<size_t>(xy[0]));
+      }
+    }
+  }
 }
 
 /// Checks the layout and every invariant above (sizes, texels inside their image and not shared

@@ -26,7 +26,15 @@ struct BaseComplexOptions
   /// bounding-box diagonal (0: no error bound, only targetFaces). The error of a collapse is the
   /// mean squared distance of the kept vertex to the planes of the surface merged into it (the
   /// Garland-Heckbert quadric over the area it covers); collapses above the bound are never made.
-  double maxError = 0.0;
+  /// The default, 1e-4, keeps every base triangle within about 1% of the diagonal (RMS) of its
+  /// surface. Without it, where feature curves block collapses (their vertices cannot leave the
+  /// curve), the count target is met by collapsing the smooth regions into huge triangles: on
+  /// bunny_glmark2 the base complex then has 300 faces whose worst deviates by 14.5% of the
+  /// diagonal, against 702 faces and 3.5% with the bound, and every level of the geometry images
+  /// is better for it (finest Hausdorff 0.35% -> 0.24%). The bound stops nothing while the base
+  /// complex has more than one face per 32 input points, so that a coarse input (the bundled
+  /// 3.7K-triangle bunny) still gets charts large enough to sample.
+  double maxError = 1e-4;
   /// Shape bound on the triangles a collapse creates, as 4 sqrt(3) area / (sum of squared
   /// sides) (1 equilateral, 0 degenerate; 0.1 is a smallest angle of about 5 degrees). Relative
   /// to the neighbours: a collapse may still create a triangle as good as the worst one it
