@@ -564,6 +564,9 @@ QWidget* tcViewerWindow::BuildPreparationPanel()
   this->SplitNonManifold = new QCheckBox(w);
   this->SplitNonManifold->setChecked(this->Preparation->GetSplitNonManifold());
   form->addRow("SplitNonManifold", this->SplitNonManifold);
+  this->FillHoles = new QCheckBox(w);
+  this->FillHoles->setChecked(this->Preparation->GetFillHoles());
+  form->addRow("FillHoles", this->FillHoles);
   return w;
 }
 
@@ -855,6 +858,7 @@ void tcViewerWindow::PushParameters()
   this->Preparation->SetMergeTolerance(this->MergeTolerance->value());
   this->Preparation->SetOrient(this->Orient->isChecked());
   this->Preparation->SetSplitNonManifold(this->SplitNonManifold->isChecked());
+  this->Preparation->SetFillHoles(this->FillHoles->isChecked());
   this->Curvature->SetMinNeighbors(this->MinNeighbors->value());
   this->Curvature->SetMaxRings(this->MaxRings->value());
   this->Curvature->SetDegree(this->Degree->value());

@@ -253,6 +253,7 @@ private:
   QDoubleSpinBox* MergeTolerance = nullptr;
   QCheckBox* Orient = nullptr;
   QCheckBox* SplitNonManifold = nullptr;
+  QCheckBox* FillHoles = nullptr;
   QSpinBox* MinNeighbors = nullptr;
   QSpinBox* MaxRings = nullptr;
   QSpinBox* Degree = nullptr;

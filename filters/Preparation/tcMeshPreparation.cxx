@@ -24,21 +24,45 @@ tcMeshPreparation::~tcMeshPreparation() = default;
 
 namespace
 {
-/// Copies the arrays of `in` to `out`, element i of `out` taking element ids[i] of `in`.
+/// Copies the arrays of `in` to `out`, element i of `out` taking element ids[i] of `in`; an
+/// element with id -1 (added by hole filling) gets zeros in numeric arrays, and arrays of other
+/// kinds (strings) are then left out.
 void CopyArrays(
   vtkDataSetAttributes* in, vtkDataSetAttributes* out, const std::vector<int64_t>& ids)
 {
   vtkNew<vtkIdList> from;
   vtkNew<vtkIdList> to;
-  from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
-  to->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::vector<vtkIdType> added;
   for (size_t i = 0; i < ids.size(); ++i)
   {
-    from->SetId(static_cast<vtkIdType>(i), ids[i]);
-    to->SetId(static_cast<vtkIdType>(i), static_cast<vtkIdType>(i));
+    if (ids[i] < 0)
+    {
+      added.push_back(static_cast<vtkIdType>(i));
+      continue;
+    }
+    from->InsertNextId(ids[i]);
+    to->InsertNextId(static_cast<vtkIdType>(i));
   }
   out->CopyAllocate(in, static_cast<vtkIdType>(ids.size()));
   out->CopyData(in, from, to);
+  if (added.empty())
+  {
+    return;
+  }
+  for (int a = out->GetNumberOfArrays() - 1; a >= 0; --a)
+  {
+    vtkDataArray* array = vtkDataArray::SafeDownCast(out->GetAbstractArray(a));
+    if (!array)
+    {
+      out->RemoveArray(a);
+      continue;
+    }
+    const std::vector<double> zeros(static_cast<size_t>(array->GetNumberOfComponents()), 0.0);
+    for (const vtkIdType i : added)
+    {
+      array->InsertTuple(i, zeros.data());
+    }
+  }
 }
 }
 
@@ -68,6 +92,8 @@ int tcMeshPreparation::RequestData(
   options.mergeTolerance = this->MergeTolerance;
   options.splitNonManifold = this->SplitNonManifold;
   options.orient = this->Orient;
+  options.fillHoles = this->FillHoles;
+  options.maxHoleEdges = this->MaxHoleEdges;
   tc::PreparationResult result;
   try
   {
@@ -84,7 +110,7 @@ int tcMeshPreparation::RequestData(
   std::vector<int64_t> inputCells(result.inputCellId.size());
   for (size_t f = 0; f < inputCells.size(); ++f)
   {
-    inputCells[f] = polygonCell[result.inputCellId[f]];
+    inputCells[f] = result.inputCellId[f] < 0 ? -1 : polygonCell[result.inputCellId[f]];
   }
   CopyArrays(input->GetPointData(), output->GetPointData(), result.inputPointId);
   CopyArrays(input->GetCellData(), output->GetCellData(), inputCells);
@@ -127,5 +153,7 @@ void tcMeshPreparation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MergeTolerance: " << this->MergeTolerance << "\n";
   os << indent << "SplitNonManifold: " << this->SplitNonManifold << "\n";
   os << indent << "Orient: " << this->Orient << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
+  os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

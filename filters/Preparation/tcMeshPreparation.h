@@ -51,6 +51,18 @@ public:
   vtkSetMacro(Orient, bool);
   vtkGetMacro(Orient, bool);
   vtkBooleanMacro(Orient, bool);
+
+  /// Close the holes (boundary loops) with faired patches at the density around them (CGAL's
+  /// triangulate_refine_and_fair_hole), so that an open scan can go through the pipeline, which
+  /// needs closed surfaces (default off). New points and cells have InputPointId /
+  /// InputCellId -1 and zeros in the input's numeric arrays. Needs a manifold mesh.
+  vtkSetMacro(FillHoles, bool);
+  vtkGetMacro(FillHoles, bool);
+  vtkBooleanMacro(FillHoles, bool);
+
+  /// With FillHoles: loops of more boundary edges stay open (default 1000; 0: any size).
+  vtkSetClampMacro(MaxHoleEdges, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaxHoleEdges, vtkIdType);
   ///@}
 
   /// What the last run changed, one item per line.
@@ -72,6 +84,8 @@ private:
   double MergeTolerance = 0.0;
   bool SplitNonManifold = false;
   bool Orient = true;
+  bool FillHoles = false;
+  vtkIdType MaxHoleEdges = 1000;
   std::string Report;
   bool Changed = false;
 };

@@ -85,7 +85,8 @@ def cmd_build(args):
                        feature_options={"crease_angle": args.crease_angle},
                        base_options={"target_faces": args.base_faces,
                                      "max_error": args.max_error},
-                       geometry_options=options)
+                       geometry_options=options,
+                       prepare_options={"fill_holes": args.fill_holes})
     finally:
         if bar:
             bar.close()
@@ -146,7 +147,8 @@ def cmd_prepare(args):
     from .pipeline import prepare, read_mesh, write_vtp
 
     clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
-                            split_non_manifold=args.split_non_manifold)
+                            split_non_manifold=args.split_non_manifold,
+                            fill_holes=args.fill_holes)
     print(report.strip() or "nothing to change")
     print(f"wrote {write_vtp(clean, args.output)}")
     return 0
@@ -177,6 +179,9 @@ def main(argv=None):
                    help="largest chart level, 2^d + 1 samples per side (default 8)")
     p.add_argument("--budget", type=int, default=0,
                    help="total samples at the finest levels (default: the mesh's point count)")
+    p.add_argument("--fill-holes", action="store_true",
+                   help="close the mesh's holes (up to 1000 boundary edges each) with faired "
+                        "patches first: the pipeline needs closed surfaces, scans often are not")
     p.add_argument("--stretch-iterations", type=int, default=10,
                    help="stretch-reducing passes over each chart's mean-value map, 0 .. 100 "
                         "(default 10; 0: the mean-value map alone)")
@@ -198,6 +203,8 @@ def main(argv=None):
     p.add_argument("--merge-tolerance", type=float, default=0.0,
                    help="merge points closer than this fraction of the diagonal")
     p.add_argument("--split-non-manifold", action="store_true")
+    p.add_argument("--fill-holes", action="store_true",
+                   help="close holes of up to 1000 boundary edges with faired patches")
     args = parser.parse_args(argv)
     if args.command == "build":
         # The filters clamp these silently; a command line says what is wrong instead.

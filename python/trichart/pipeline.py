@@ -69,13 +69,16 @@ def read_mesh(path, progress=None):
     return _output(reader)
 
 
-def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, progress=None):
+def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fill_holes=False,
+            max_hole_edges=1000, progress=None):
     """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
     f = TriChartPreparation.tcMeshPreparation()
     f.SetInputData(mesh)
     f.SetMergeTolerance(merge_tolerance)
     f.SetSplitNonManifold(split_non_manifold)
     f.SetOrient(orient)
+    f.SetFillHoles(fill_holes)
+    f.SetMaxHoleEdges(max_hole_edges)
     run(f, "prepare", progress)
     return _output(f), f.GetReport()
 
@@ -251,7 +254,7 @@ def write_vtp(mesh, path):
 
 def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
           cluster_options=None, feature_options=None, base_options=None,
-          geometry_options=None):
+          geometry_options=None, prepare_options=None):
     """The static pipeline: read, prepare, curvature, spectral clusters, feature refinement,
     base complex with MAPS, path tracing, geometry images; writes the atlas to `atlas_path`.
 
@@ -272,7 +275,8 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
         return value
 
     mesh = timed("read", read_mesh, path, progress)
-    clean, report = timed("prepare", prepare, mesh, progress=progress)
+    clean, report = timed("prepare", prepare, mesh, progress=progress,
+                          **(prepare_options or {}))
     surface, crest = timed("curvature", curvature, clean, progress=progress,
                            **(curvature_options or {}))
     clustered, boundaries = timed("clusters", cluster, surface, progress=progress,

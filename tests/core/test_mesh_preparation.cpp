@@ -4,6 +4,7 @@
 #include "tc/mesh_topology.h"
 #include "tc/off_io.h"
 
+#include "analytic_meshes.h"
 #include "test_data.h"
 #include "test_progress.h"
 
@@ -197,11 +198,12 @@ void addTetrahedron(std::vector<double>& points, Polygons& polygons, double x, d
 }
 
 /// The message of the tc::InputError that prepareMesh throws ("" if none).
-std::string preparationError(const tc::PolygonSoup& soup)
+std::string preparationError(
+  const tc::PolygonSoup& soup, const tc::PreparationOptions& options = {})
 {
   try
   {
-    tc::prepareMesh(soup);
+    tc::prepareMesh(soup, options);
   }
   catch (const tc::InputError& error)
   {
@@ -898,4 +900,121 @@ TEST(Preparation, LeavesAClosedMediumMeshUnchanged)
   EXPECT_EQ(result.report.closedComponents, 1);
   EXPECT_EQ(result.report.outputTriangles, 88928);
   EXPECT_FALSE(result.report.changed());
+}
+
+namespace
+{
+/// The unit icosphere (5120 triangles) without the triangles whose centroid lies in one of two
+/// caps, z > 0.8 and x > 0.9, as a soup: a sphere with two holes.
+tc::PolygonSoup sphereWithTwoHoles()
+{
+  const tc::TriMesh sphere = tctest::icosphere(1.0, 4).mesh;
+  tc::PolygonSoup soup;
+  soup.points = sphere.points;
+  soup.offsets.push_back(0);
+  for (int64_t f = 0; f < sphere.numTriangles(); ++f)
+  {
+    std::array<double, 3> c{ 0.0, 0.0, 0.0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int x = 0; x < 3; ++x)
+      {
+        c[x] += sphere.points[3 * sphere.triangles[3 * f + k] + x] / 3.0;
+      }
+    }
+    if (c[2] > 0.8 || c[0] > 0.9)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      soup.connectivity.push_back(sphere.triangles[3 * f + k]);
+    }
+    soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  }
+  return soup;
+}
+} // namespace
+
+TEST(Preparation, HolesAreClosedByFairedPatchesWhenAsked)
+{
+  const tc::PolygonSoup soup = sphereWithTwoHoles();
+  const tc::PreparationResult open = tc::prepareMesh(soup);
+  EXPECT_GT(open.report.boundaryEdges, 20);
+  EXPECT_EQ(open.report.closedComponents, 0);
+  EXPECT_EQ(open.report.filledHoles, 0);
+
+  tc::PreparationOptions options;
+  options.fillHoles = true;
+  const tc::PreparationResult r = tc::prepareMesh(soup, options);
+  const tc::PreparationReport& report = r.report;
+  std::printf("[ figures  ] sphere with two holes (%lld boundary edges): %lld holes filled with "
+              "%lld triangles and %lld points\n",
+    static_cast<long long>(open.report.boundaryEdges), static_cast<long long>(report.filledHoles),
+    static_cast<long long>(report.holeTriangles), static_cast<long long>(report.holePoints));
+  EXPECT_EQ(report.filledHoles, 2);
+  EXPECT_EQ(report.openHoles, 0);
+  EXPECT_EQ(report.unfairedHoles, 0);
+  EXPECT_EQ(report.boundaryEdges, 0);
+  EXPECT_EQ(report.components, 1);
+  EXPECT_EQ(report.closedComponents, 1);
+  EXPECT_TRUE(report.changed());
+  EXPECT_TRUE(contains(report.text(), "filled 2 holes"));
+  expectManifold(r.mesh);
+  EXPECT_TRUE(consistentlyOriented(r.mesh));
+  EXPECT_GT(signedVolume(r.mesh), 0.0);
+  // A closed genus-0 surface: V - E + F = 2.
+  EXPECT_EQ(
+    r.mesh.numPoints() - tc::buildEdgeTable(r.mesh.triangles).numEdges() + r.mesh.numTriangles(),
+    2);
+  // The old points and triangles come first and keep their input ids; the new ones say -1.
+  EXPECT_EQ(r.mesh.numPoints(), open.mesh.numPoints() + report.holePoints);
+  EXPECT_EQ(r.mesh.numTriangles(), open.mesh.numTriangles() + report.holeTriangles);
+  EXPECT_GT(report.holePoints, 10);
+  for (int64_t v = 0; v < r.mesh.numPoints(); ++v)
+  {
+    EXPECT_EQ(r.inputPointId[v] < 0, v >= open.mesh.numPoints());
+  }
+  for (int64_t f = 0; f < r.mesh.numTriangles(); ++f)
+  {
+    EXPECT_EQ(r.inputCellId[f] < 0, f >= open.mesh.numTriangles());
+  }
+  // Faired patches follow the sphere: the cap of z > 0.8 bulges 0.2 above its rim's plane, and
+  // the new points lie well above that plane, near the sphere.
+  double farthest = 0.0;
+  for (int64_t v = open.mesh.numPoints(); v < r.mesh.numPoints(); ++v)
+  {
+    const std::array<double, 3> p = r.mesh.point(v);
+    farthest = std::max(farthest, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1));
+  }
+  std::printf("[ figures  ] new points within %.4f of the unit sphere\n", farthest);
+  EXPECT_LT(farthest, 0.05);
+
+  // Loops longer than maxHoleEdges stay open and are reported.
+  options.maxHoleEdges = 5;
+  const tc::PreparationResult capped = tc::prepareMesh(soup, options);
+  EXPECT_EQ(capped.report.filledHoles, 0);
+  EXPECT_EQ(capped.report.openHoles, 2);
+  EXPECT_EQ(capped.report.boundaryEdges, open.report.boundaryEdges);
+  EXPECT_TRUE(contains(capped.report.text(), "left 2 holes open"));
+}
+
+TEST(Preparation, HolesOfANonManifoldMeshAreRefusedUntilSplit)
+{
+  // The sphere with two holes and a fin on one of its edges.
+  tc::PolygonSoup soup = sphereWithTwoHoles();
+  const int64_t a = soup.connectivity[0], b = soup.connectivity[1];
+  soup.points.insert(soup.points.end(), { 3.0, 3.0, 3.0 });
+  soup.connectivity.insert(soup.connectivity.end(), { a, b, soup.numPoints() - 1 });
+  soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  tc::PreparationOptions options;
+  options.fillHoles = true;
+  const std::string error = preparationError(soup, options);
+  EXPECT_TRUE(contains(error, "cannot fill holes")) << error;
+  EXPECT_TRUE(contains(error, "--split-non-manifold")) << error;
+  // Split off, the fin is a component of its own whose 3-edge loop is closed too.
+  options.splitNonManifold = true;
+  const tc::PreparationResult r = tc::prepareMesh(soup, options);
+  EXPECT_EQ(r.report.filledHoles, 3);
+  EXPECT_EQ(r.report.boundaryEdges, 0);
 }

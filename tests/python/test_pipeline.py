@@ -83,3 +83,46 @@ def test_plugin_path_points_at_the_plugin():
         pytest.skip("built without ParaView: no plugin")
     path = trichart.plugin_path()
     assert path.endswith("TriChart.so")
+
+
+def test_fill_holes_closes_an_open_sphere():
+    # A UV sphere without its polar caps (z > 0.4 and z < -0.4): two holes.
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    from vtkmodules.vtkCommonCore import vtkIdList
+
+    source = vtkSphereSource()
+    source.SetThetaResolution(48)
+    source.SetPhiResolution(32)
+    source.Update()
+    sphere = source.GetOutput()
+    kept = vtkPolyData()
+    kept.SetPoints(sphere.GetPoints())
+    kept.Allocate()
+    ids = vtkIdList()
+    for c in range(sphere.GetNumberOfCells()):
+        sphere.GetCellPoints(c, ids)
+        z = sum(sphere.GetPoint(ids.GetId(k))[2] for k in range(ids.GetNumberOfIds()))
+        if abs(z / ids.GetNumberOfIds()) < 0.4:
+            kept.InsertNextCell(sphere.GetCellType(c), ids)
+    opened, report = trichart.prepare(kept)
+    assert "boundary edges" in report and "filled" not in report
+
+    closed, report = trichart.prepare(kept, fill_holes=True)
+    print(report)
+    assert "filled 2 holes" in report and "boundary edge" not in report
+    boundary = closed.GetPointData().GetArray("BoundaryVertex")
+    assert max(boundary.GetValue(i) for i in range(boundary.GetNumberOfTuples())) == 0
+    new_points = closed.GetNumberOfPoints() - opened.GetNumberOfPoints()
+    assert new_points > 0
+    input_ids = closed.GetPointData().GetArray("InputPointId")
+    assert sum(1 for i in range(input_ids.GetNumberOfTuples()) if input_ids.GetValue(i) < 0) \
+        == new_points
+    # Faired patches follow the sphere (radius 0.5) closely.
+    for i in range(opened.GetNumberOfPoints(), closed.GetNumberOfPoints()):
+        x, y, z = closed.GetPoint(i)
+        assert abs(math.sqrt(x * x + y * y + z * z) - 0.5) < 0.05
+
+    # Loops longer than max_hole_edges stay open.
+    _, report = trichart.prepare(kept, fill_holes=True, max_hole_edges=10)
+    assert "left 2 holes open" in report

@@ -468,7 +468,8 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     if (twin == 0)
     {
       throw InputError("buildBaseComplex: edge " + edge() +
-        " is on a boundary; the base complex needs a closed surface");
+        " is on a boundary; the base complex needs a closed surface (close the holes in the "
+        "preparation: FillHoles, trichart build --fill-holes)");
     }
     Opp_[h] = o;
   }

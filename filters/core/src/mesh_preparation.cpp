@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/mesh_preparation.h"
 
+#include "hole_filling.h"
+
 #include "tc/errors.h"
 #include "tc/mesh_topology.h"
 
@@ -816,10 +818,12 @@ int32_t splitNonManifold(
 /// Union-find over the edges in order rather than a breadth-first search over faces: it visits
 /// memory in order, and gives the same result (the orientation of an orientable patch relative
 /// to its first face is unique).
-void orientComponents(
-  const double* points, bool orient, const EdgeTable& edges, PreparationResult& result)
+void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& result)
 {
+  const double* points = result.mesh.points.data();
   PreparationReport& report = result.report;
+  report.closedComponents = 0;
+  report.nonOrientableComponents = 0;
   std::vector<int32_t>& tri = result.mesh.triangles;
   const int64_t nf = static_cast<int64_t>(tri.size() / 3);
   DisjointSets connected(nf);
@@ -892,7 +896,7 @@ void orientComponents(
     {
       continue;
     }
-    const auto at = [&](int c) { return pointOf(points, result.inputPointId[tri[3 * f + c]]); };
+    const auto at = [&](int c) { return pointOf(points, tri[3 * f + c]); };
     if (!hasOrigin[k])
     {
       origin[k] = at(0);
@@ -930,7 +934,8 @@ void orientComponents(
 bool PreparationReport::changed() const
 {
   return polygonsTriangulated > 0 || mergedPoints > 0 || degenerateFaces > 0 ||
-    duplicateFaces > 0 || flippedFaces > 0 || unusedPoints > 0 || splitVertices > 0;
+    duplicateFaces > 0 || flippedFaces > 0 || unusedPoints > 0 || splitVertices > 0 ||
+    filledHoles > 0;
 }
 
 std::string PreparationReport::text() const
@@ -965,6 +970,15 @@ std::string PreparationReport::text() const
   line(splitVertices,
     "added " + plural(splitVertices, "vertex copy", "vertex copies") +
       " to split non-manifold edges and vertices");
+  line(filledHoles,
+    "filled " + plural(filledHoles, "hole", "holes") + " with " +
+      plural(holeTriangles, "triangle", "triangles") + " and " +
+      plural(holePoints, "point", "points"));
+  line(unfairedHoles,
+    plural(unfairedHoles, "filled hole", "filled holes") + " left unfaired (flat patch)");
+  line(openHoles,
+    "left " + plural(openHoles, "hole", "holes") +
+      " open (more boundary edges than MaxHoleEdges, or no manifold patch)");
   line(boundaryEdges, plural(boundaryEdges, "boundary edge", "boundary edges"));
   line(components, plural(components, "connected component", "connected components"));
   line(closedComponents, plural(closedComponents, "closed component", "closed components"));
@@ -1190,7 +1204,6 @@ PreparationResult prepareMesh(
   progress.report(0.45);
 
   // 6. Non-manifold edges and vertices, flagged before any splitting.
-  const int64_t nf = numKept;
   EdgeTable edges = buildEdgeTable(tri);
   findNonManifold(tri, edges, numVertices, result);
   progress.report(0.6);
@@ -1204,11 +1217,63 @@ PreparationResult prepareMesh(
   }
   progress.report(0.7);
 
-  // 8. Components and orientation.
-  orientComponents(points, options.orient, edges, result);
-  progress.report(0.9);
+  // 8. Output points, components and orientation.
+  result.mesh.points.resize(3 * static_cast<size_t>(numVertices));
+  for (int32_t v = 0; v < numVertices; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      result.mesh.points[3 * v + c] = points[3 * result.inputPointId[v] + c];
+    }
+  }
+  orientComponents(options.orient, edges, result);
+  progress.report(0.8);
 
-  // 9. Boundary, output points.
+  // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
+  int64_t nf = numKept;
+  if (options.fillHoles)
+  {
+    int64_t boundary = 0;
+    for (int32_t e = 0; e < edges.numEdges(); ++e)
+    {
+      boundary += edges.valence(e) == 1 ? 1 : 0;
+    }
+    if (boundary > 0)
+    {
+      const HoleFilling filled =
+        fillHoles(result.mesh, options.maxHoleEdges, progress.sub(0.8, 0.95));
+      if (filled.nonManifold)
+      {
+        throw InputError("mesh preparation: cannot fill holes: the mesh is not an oriented "
+                         "manifold (" +
+          plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") + ", " +
+          plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
+          ", " +
+          plural(report.nonOrientableComponents, "non-orientable component",
+            "non-orientable components") +
+          "); split non-manifold parts first (SplitNonManifold, --split-non-manifold)");
+      }
+      report.filledHoles = filled.filledHoles;
+      report.holeTriangles = filled.addedTriangles;
+      report.holePoints = filled.addedPoints;
+      report.unfairedHoles = filled.unfairedHoles;
+      report.openHoles = filled.skippedHoles;
+      numVertices += static_cast<int32_t>(filled.addedPoints);
+      nf += filled.addedTriangles;
+      result.inputPointId.resize(numVertices, -1);
+      result.inputCellId.resize(nf, -1);
+      result.nonManifoldVertex.resize(numVertices, 0);
+      result.nonManifoldEdge.resize(nf, 0);
+      if (filled.addedTriangles > 0)
+      {
+        edges = buildEdgeTable(tri);
+        orientComponents(options.orient, edges, result);
+      }
+    }
+  }
+  progress.report(0.95);
+
+  // 10. Boundary.
   result.boundaryVertex.assign(numVertices, 0);
   for (int32_t e = 0; e < edges.numEdges(); ++e)
   {
@@ -1217,14 +1282,6 @@ PreparationResult prepareMesh(
       ++report.boundaryEdges;
       result.boundaryVertex[edges.vertices[2 * e]] = 1;
       result.boundaryVertex[edges.vertices[2 * e + 1]] = 1;
-    }
-  }
-  result.mesh.points.resize(3 * static_cast<size_t>(numVertices));
-  for (int32_t v = 0; v < numVertices; ++v)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      result.mesh.points[3 * v + c] = points[3 * result.inputPointId[v] + c];
     }
   }
   report.outputPoints = numVertices;

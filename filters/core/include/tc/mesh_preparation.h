@@ -24,6 +24,14 @@ struct PreparationOptions
   bool splitNonManifold = false;
   /// Orient each component consistently; closed components face outward (positive volume).
   bool orient = true;
+  /// Close the holes of the oriented mesh (boundary loops, e.g. where a scanner saw nothing)
+  /// with a minimum-area triangulation refined to the density around the hole and faired
+  /// (CGAL's triangulate_refine_and_fair_hole). Needs a manifold mesh (splitNonManifold).
+  bool fillHoles = false;
+  /// With fillHoles: loops of more boundary edges than this stay open (0: any size). The long
+  /// loops are usually a surface's outer border (a terrain, a scan of one side), which a lid
+  /// would not repair.
+  int64_t maxHoleEdges = 1000;
 };
 
 /// What tcMeshPreparation found and changed. Counts of removed things refer to the stage in
@@ -43,6 +51,12 @@ struct PreparationReport
   int64_t nonManifoldEdges = 0;     ///< edges with more than 2 triangles (before splitting)
   int64_t nonManifoldVertices = 0;  ///< vertices whose triangles form > 1 fan (before splitting)
   int64_t splitVertices = 0;        ///< vertex copies added by splitNonManifold
+  int64_t filledHoles = 0;          ///< boundary loops closed by fillHoles
+  int64_t holeTriangles = 0;        ///< triangles added to close them
+  int64_t holePoints = 0;           ///< points added inside the patches (refinement)
+  int64_t unfairedHoles = 0;        ///< filled holes whose patch could not be faired
+  int64_t openHoles = 0;            ///< loops fillHoles left open (too long, or no manifold
+                                    ///< triangulation, or a non-manifold mesh)
   int64_t boundaryEdges = 0;        ///< output edges with exactly 1 triangle
   int64_t components = 0;           ///< edge-connected components of the output
   int64_t nonOrientableComponents = 0; ///< components left unoriented (Moebius-like)
@@ -61,8 +75,9 @@ struct PreparationResult
 {
   TriMesh mesh;                           ///< #Vout points, #Fout triangles
   std::vector<int64_t> inputPointId;      ///< #Vout: input point it came from (lowest of a
-                                          ///< merged group)
-  std::vector<int64_t> inputCellId;       ///< #Fout: input polygon it came from
+                                          ///< merged group); -1 for a hole-filling point
+  std::vector<int64_t> inputCellId;       ///< #Fout: input polygon it came from; -1 for a
+                                          ///< hole-filling triangle
   std::vector<uint8_t> nonManifoldEdge;   ///< #Fout: 1 if a side is shared by > 2 triangles
                                           ///< (before splitting)
   std::vector<uint8_t> nonManifoldVertex; ///< #Vout: 1 if the triangles around it formed more
@@ -76,8 +91,9 @@ struct PreparationResult
 /// Cleans a polygon soup into a triangle mesh, in this order: validate; merge duplicate points;
 /// triangulate polygons (ear clipping in the plane of the Newell normal); drop degenerate and
 /// duplicate triangles; find non-manifold edges and vertices (and split them if asked); orient;
-/// drop unused points; count boundary edges and components. Output points keep the input
-/// order (split copies are appended); output triangles keep the polygon order. Deterministic.
+/// fill holes (if asked) and orient again; count boundary edges and components. Output points
+/// keep the input order (split copies, then hole-filling points are appended); output
+/// triangles keep the polygon order (hole-filling triangles appended). Deterministic.
 ///
 /// @param[in] soup      #V points, #P polygons with ids in [0, #V)
 /// @param[in] options   see PreparationOptions
