@@ -86,7 +86,8 @@ def cmd_build(args):
                        base_options={"target_faces": args.base_faces,
                                      "max_error": args.max_error},
                        geometry_options=options,
-                       prepare_options={"fill_holes": args.fill_holes})
+                       prepare_options={"fill_holes": args.fill_holes,
+                                        "split_non_manifold": args.split_non_manifold})
     finally:
         if bar:
             bar.close()
@@ -179,6 +180,8 @@ def main(argv=None):
                    help="largest chart level, 2^d + 1 samples per side (default 8)")
     p.add_argument("--budget", type=int, default=0,
                    help="total samples at the finest levels (default: the mesh's point count)")
+    p.add_argument("--split-non-manifold", action="store_true",
+                   help="split non-manifold edges and vertices in the preparation")
     p.add_argument("--fill-holes", action="store_true",
                    help="close the mesh's holes (up to 1000 boundary edges each) with faired "
                         "patches first: the pipeline needs closed surfaces, scans often are not")

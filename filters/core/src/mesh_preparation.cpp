@@ -1244,14 +1244,23 @@ PreparationResult prepareMesh(
         fillHoles(result.mesh, options.maxHoleEdges, progress.sub(0.8, 0.95));
       if (filled.nonManifold)
       {
-        throw InputError("mesh preparation: cannot fill holes: the mesh is not an oriented "
-                         "manifold (" +
-          plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") + ", " +
-          plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
-          ", " +
-          plural(report.nonOrientableComponents, "non-orientable component",
-            "non-orientable components") +
-          "); split non-manifold parts first (SplitNonManifold, --split-non-manifold)");
+        std::string why;
+        if (!options.splitNonManifold && report.nonManifoldEdges + report.nonManifoldVertices > 0)
+        {
+          why = plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
+            " and " +
+            plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
+            "; split them first (SplitNonManifold, --split-non-manifold)";
+        }
+        else
+        {
+          why = plural(report.nonOrientableComponents, "non-orientable component",
+                  "non-orientable components") +
+            " (Moebius-like), which no patch closes consistently; repair the mesh in a mesh "
+            "editor, or leave FillHoles off";
+        }
+        throw InputError(
+          "mesh preparation: cannot fill holes: the mesh is not an oriented manifold: " + why);
       }
       report.filledHoles = filled.filledHoles;
       report.holeTriangles = filled.addedTriangles;
