@@ -24,7 +24,8 @@ if failures:
 reader = TriChartMeshReader(FileName=os.path.join(data, "meshes", "fandisk.off"))  # noqa: F821
 prep = TriChartMeshPreparation(Input=reader)  # noqa: F821
 check(prep.GetXMLName() == "tcMeshPreparation", "proxy name is the class name")
-check(prep.MergeTolerance == 0.0 and prep.Orient == 1 and prep.SplitNonManifold == 0,
+check(prep.MergeTolerance == 0.0 and prep.Orient == 1 and prep.SplitNonManifold == 0
+      and prep.FillHoles == 0 and prep.MaxHoleEdges == 1000,
       "tcMeshPreparation defaults match the C++ defaults")
 curv = TriChartCurvature(Input=prep)  # noqa: F821
 check(curv.MinNeighbors == 20 and curv.Degree == 3 and curv.ComputeCrestLines == 1,
