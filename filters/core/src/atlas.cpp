@@ -194,26 +194,20 @@ void validateAtlas(const Atlas& atlas)
       }
     }
   }
-  const size_t nc = atlas.charts.size();
-  for (size_t c = 0; c < nc; ++c)
+  for (size_t k = 0; k < atlas.images.size(); ++k)
   {
-    const AtlasChart& chart = atlas.charts[c];
-    for (int32_t d = 0; d <= chart.maxLevel; ++d)
-    {
-      const int32_t n = 1 << d;
-      for (int32_t j = 0; j <= n; ++j)
+    const float* position = atlas.images[k].data[0].data();
+    forEachImageSample(atlas, k,
+      [&](int32_t c, int32_t, int32_t, int32_t, size_t texel)
       {
-        for (int32_t i = 0; i + j <= n; ++i)
+        const float* p = position + 3 * texel;
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         {
-          const float* p = atlasSample(atlas, static_cast<int32_t>(c), 0, d, i, j);
-          if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-          {
-            fail(chartName(c) + " has a position that is not a finite number");
-          }
+          fail(chartName(static_cast<size_t>(c)) + " has a position that is not a finite number");
         }
-      }
-    }
+      });
   }
+  const size_t nc = atlas.charts.size();
 
   // Shared sides: sample t of a side equals sample N - t of the neighbour's side at every common
   // level, and sample 2t of the next finer level of the same chart (the dyadic subset property

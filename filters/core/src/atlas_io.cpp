@@ -147,18 +147,6 @@ enum TexelRole : uint8_t
     2, ///< sample (i, j), both even, of level d >= 1: sample (i/2, j/2) of image k + 1
 };
 
-/// The role of every texel of image k, rows of the image's width.
-std::vector<uint8_t> texelRoles(const Atlas& atlas, size_t k)
-{
-  const AtlasImage& image = atlas.images[k];
-  std::vector<uint8_t> roles(
-    static_cast<size_t>(image.width) * static_cast<size_t>(image.height), kEmptyTexel);
-  forEachImageSample(atlas, k,
-    [&roles](int32_t, int32_t d, int32_t i, int32_t j, size_t texel)
-    { roles[texel] = d >= 1 && i % 2 == 0 && j % 2 == 0 ? kInheritedTexel : kNewTexel; });
-  return roles;
-}
-
 /// Calls f(texel of image k, texel of image k + 1) for every inherited texel of image k.
 template <class F>
 void forEachInherited(const Atlas& atlas, size_t k, F&& f)
@@ -175,6 +163,25 @@ void forEachInherited(const Atlas& atlas, size_t k, F&& f)
         f(texel, static_cast<size_t>(xy[1]) * coarseWidth + static_cast<size_t>(xy[0]));
       }
     });
+}
+
+/// The role of every texel of image k, rows of the image's width.
+std::vector<uint8_t> texelRoles(const Atlas& atlas, size_t k)
+{
+  const AtlasImage& image = atlas.images[k];
+  std::vector<uint8_t> roles(
+    static_cast<size_t>(image.width) * static_cast<size_t>(image.height), kEmptyTexel);
+  forEachImageSample(atlas, k,
+    [&roles](int32_t, int32_t, int32_t, int32_t, size_t texel) { roles[texel] = kNewTexel; });
+  forEachInherited(atlas, k, [&roles](size_t texel, size_t) { roles[texel] = kInheritedTexel; });
+  return roles;
+}
+
+/// Floats in a part of `rows` rows of an image `width` texels wide.
+uint64_t partFloats(int32_t width, int32_t rows, const AtlasAttribute& attribute)
+{
+  return static_cast<uint64_t>(width) * static_cast<uint64_t>(rows) *
+    static_cast<uint64_t>(attribute.components);
 }
 
 /// Height of a compact part of an image `width` texels wide: rows enough for its new texels
@@ -1057,7 +1064,7 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
       std::to_string(atlas.attributes.size()) + " attributes x " +
       std::to_string(atlas.images.size()) + " images); the file is damaged");
   }
-  // Per image: texel roles and the part width (compact images), checked against every part.
+  // Per image: texel roles and the part height (compact images), checked against every part.
   std::vector<std::vector<uint8_t>> roles(atlas.images.size());
   std::vector<int32_t> partHeight(atlas.images.size());
   uint64_t totalFloats = 0;
@@ -1083,8 +1090,7 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
       checkPart(
         path, name, file.header(it->second), image.width, partHeight[k], atlas.attributes[a]);
       totalFloats += floatCount(image, atlas.attributes[a]);
-      storedFloats += static_cast<uint64_t>(image.width) * static_cast<uint64_t>(partHeight[k]) *
-        static_cast<uint64_t>(atlas.attributes[a].components);
+      storedFloats += partFloats(image.width, partHeight[k], atlas.attributes[a]);
     }
   }
   if (totalFloats * sizeof(float) > kMaxCompressionRatio * std::max<uint64_t>(fileSize, 1))
@@ -1178,7 +1184,7 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
   checkWritable(atlas, path);
 
   // Per image: compact (its parts hold only the texels no coarser image holds) when the
-  // texels allow it, the part width, and the checksum of every attribute.
+  // texels allow it, the part height, and the checksum of every attribute.
   const size_t numImages = atlas.images.size();
   std::vector<std::vector<uint8_t>> roles(numImages);
   std::vector<uint8_t> compact(numImages, 0);
@@ -1200,8 +1206,7 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
     for (size_t a = 0; a < atlas.attributes.size(); ++a)
     {
       crcs[k].push_back(crc32Of(image.data[a].data(), image.data[a].size() * sizeof(float)));
-      totalFloats += static_cast<uint64_t>(image.width) * static_cast<uint64_t>(partHeight[k]) *
-        static_cast<uint64_t>(atlas.attributes[a].components);
+      totalFloats += partFloats(image.width, partHeight[k], atlas.attributes[a]);
     }
     displayWidth = std::max(displayWidth, image.width);
     displayHeight = std::max(displayHeight, image.height);

@@ -953,9 +953,10 @@ double storageRounded(double x)
   return std::strtod(text, nullptr);
 }
 
-/// The box with every corner rounded by storageRounded after it grew on every side by more than
-/// that rounding can move a corner (3 x 5e-8 of the largest coordinate), so it still holds every
-/// point.
+/// The box with every corner rounded by storageRounded after each axis of non-zero length grew
+/// at both ends by more than that rounding can move a corner (3 x 5e-8 of the largest
+/// coordinate), so it still holds every point. A flat box (a planar chart) stays flat: its points
+/// may then lie off its rounded plane by the rounding, 5e-8 of the largest coordinate.
 std::array<double, 12> storableBox(const std::array<double, 12>& corners)
 {
   double largest = 0.0;

@@ -927,6 +927,21 @@ void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& re
     }
   }
 }
+/// Counts the boundary edges (one triangle) and flags their vertices.
+void markBoundary(const EdgeTable& edges, int32_t numVertices, PreparationResult& result)
+{
+  result.report.boundaryEdges = 0;
+  result.boundaryVertex.assign(numVertices, 0);
+  for (int32_t e = 0; e < edges.numEdges(); ++e)
+  {
+    if (edges.valence(e) == 1)
+    {
+      ++result.report.boundaryEdges;
+      result.boundaryVertex[edges.vertices[2 * e]] = 1;
+      result.boundaryVertex[edges.vertices[2 * e + 1]] = 1;
+    }
+  }
+}
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -1217,7 +1232,7 @@ PreparationResult prepareMesh(
   }
   progress.report(0.7);
 
-  // 8. Output points, components and orientation.
+  // 8. Output points, components, orientation and boundary.
   result.mesh.points.resize(3 * static_cast<size_t>(numVertices));
   for (int32_t v = 0; v < numVertices; ++v)
   {
@@ -1227,18 +1242,14 @@ PreparationResult prepareMesh(
     }
   }
   orientComponents(options.orient, edges, result);
+  markBoundary(edges, numVertices, result);
   progress.report(0.8);
 
   // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   int64_t nf = numKept;
   if (options.fillHoles)
   {
-    int64_t boundary = 0;
-    for (int32_t e = 0; e < edges.numEdges(); ++e)
-    {
-      boundary += edges.valence(e) == 1 ? 1 : 0;
-    }
-    if (boundary > 0)
+    if (report.boundaryEdges > 0)
     {
       const HoleFilling filled =
         fillHoles(result.mesh, options.maxHoleEdges, progress.sub(0.8, 0.95));
@@ -1278,19 +1289,7 @@ PreparationResult prepareMesh(
         edges = buildEdgeTable(tri);
         orientComponents(options.orient, edges, result);
       }
-    }
-  }
-  progress.report(0.95);
-
-  // 10. Boundary.
-  result.boundaryVertex.assign(numVertices, 0);
-  for (int32_t e = 0; e < edges.numEdges(); ++e)
-  {
-    if (edges.valence(e) == 1)
-    {
-      ++report.boundaryEdges;
-      result.boundaryVertex[edges.vertices[2 * e]] = 1;
-      result.boundaryVertex[edges.vertices[2 * e + 1]] = 1;
+      markBoundary(edges, numVertices, result);
     }
   }
   report.outputPoints = numVertices;
