@@ -94,6 +94,9 @@ int tcMeshPreparation::RequestData(
   options.orient = this->Orient;
   options.fillHoles = this->FillHoles;
   options.maxHoleEdges = this->MaxHoleEdges;
+  options.removeSlivers = this->RemoveSlivers;
+  options.sliverAngle = this->SliverAngle;
+  options.sliverEdgeRatio = this->SliverEdgeRatio;
   tc::PreparationResult result;
   try
   {
@@ -155,5 +158,8 @@ void tcMeshPreparation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Orient: " << this->Orient << "\n";
   os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
+  os << indent << "RemoveSlivers: " << this->RemoveSlivers << "\n";
+  os << indent << "SliverAngle: " << this->SliverAngle << "\n";
+  os << indent << "SliverEdgeRatio: " << this->SliverEdgeRatio << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

@@ -63,6 +63,23 @@ public:
   /// With FillHoles: loops of more boundary edges stay open (default 1000; 0: any size).
   vtkSetClampMacro(MaxHoleEdges, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(MaxHoleEdges, vtkIdType);
+
+  /// Remove slivers last (default off): collapse the shortest edge of every needle and flip the
+  /// longest edge of every cap where no triangle folds (CGAL's remove_almost_degenerate_faces).
+  /// Scans often have thousands, which the base complex keeps and path tracing cannot cut
+  /// through. No point moves; collapsed points are dropped. Needs a manifold mesh.
+  vtkSetMacro(RemoveSlivers, bool);
+  vtkGetMacro(RemoveSlivers, bool);
+  vtkBooleanMacro(RemoveSlivers, bool);
+
+  /// With RemoveSlivers: a triangle with a larger angle (degrees) is a cap (default 170).
+  vtkSetClampMacro(SliverAngle, double, 90.0, 180.0);
+  vtkGetMacro(SliverAngle, double);
+
+  /// With RemoveSlivers: a triangle whose longest side exceeds its shortest by a larger ratio is
+  /// a needle (default 10).
+  vtkSetClampMacro(SliverEdgeRatio, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SliverEdgeRatio, double);
   ///@}
 
   /// What the last run changed, one item per line.
@@ -86,6 +103,9 @@ private:
   bool Orient = true;
   bool FillHoles = false;
   vtkIdType MaxHoleEdges = 1000;
+  bool RemoveSlivers = false;
+  double SliverAngle = 170.0;
+  double SliverEdgeRatio = 10.0;
   std::string Report;
   bool Changed = false;
 };

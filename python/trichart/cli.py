@@ -87,7 +87,8 @@ def cmd_build(args):
                                      "max_error": args.max_error},
                        geometry_options=options,
                        prepare_options={"fill_holes": args.fill_holes,
-                                        "split_non_manifold": args.split_non_manifold})
+                                        "split_non_manifold": args.split_non_manifold,
+                                        "remove_slivers": args.remove_slivers})
     finally:
         if bar:
             bar.close()
@@ -149,7 +150,8 @@ def cmd_prepare(args):
 
     clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
                             split_non_manifold=args.split_non_manifold,
-                            fill_holes=args.fill_holes)
+                            fill_holes=args.fill_holes,
+                            remove_slivers=args.remove_slivers)
     print(report.strip() or "nothing to change")
     print(f"wrote {write_vtp(clean, args.output)}")
     return 0
@@ -185,6 +187,10 @@ def main(argv=None):
     p.add_argument("--fill-holes", action="store_true",
                    help="close the mesh's holes (up to 1000 boundary edges each) with faired "
                         "patches first: the pipeline needs closed surfaces, scans often are not")
+    p.add_argument("--remove-slivers", action="store_true",
+                   help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
+                        "times the shortest) in the preparation: scans often have thousands, "
+                        "through which the base edges cannot be traced")
     p.add_argument("--stretch-iterations", type=int, default=10,
                    help="stretch-reducing passes over each chart's mean-value map, 0 .. 100 "
                         "(default 10; 0: the mean-value map alone)")
@@ -208,6 +214,9 @@ def main(argv=None):
     p.add_argument("--split-non-manifold", action="store_true")
     p.add_argument("--fill-holes", action="store_true",
                    help="close holes of up to 1000 boundary edges with faired patches")
+    p.add_argument("--remove-slivers", action="store_true",
+                   help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
+                        "times the shortest)")
     args = parser.parse_args(argv)
     if args.command == "build":
         # The filters clamp these silently; a command line says what is wrong instead.

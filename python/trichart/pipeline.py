@@ -70,7 +70,8 @@ def read_mesh(path, progress=None):
 
 
 def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fill_holes=False,
-            max_hole_edges=1000, progress=None):
+            max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
+            sliver_edge_ratio=10.0, progress=None):
     """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
     f = TriChartPreparation.tcMeshPreparation()
     f.SetInputData(mesh)
@@ -79,6 +80,9 @@ def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fi
     f.SetOrient(orient)
     f.SetFillHoles(fill_holes)
     f.SetMaxHoleEdges(max_hole_edges)
+    f.SetRemoveSlivers(remove_slivers)
+    f.SetSliverAngle(sliver_angle)
+    f.SetSliverEdgeRatio(sliver_edge_ratio)
     run(f, "prepare", progress)
     return _output(f), f.GetReport()
 

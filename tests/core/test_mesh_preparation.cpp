@@ -1018,3 +1018,172 @@ TEST(Preparation, HolesOfANonManifoldMeshAreRefusedUntilSplit)
   EXPECT_EQ(r.report.filledHoles, 3);
   EXPECT_EQ(r.report.boundaryEdges, 0);
 }
+
+namespace
+{
+/// An icosphere with a needle pair (a point 3% along an edge, splitting both its triangles: two
+/// triangles with sides 33 times their shortest) and a cap (a point 1% of a triangle's height off
+/// the middle of a side, splitting that triangle in three: one angle of 178 degrees).
+tc::PolygonSoup sphereWithSlivers()
+{
+  const tc::TriMesh sphere = tctest::icosphere(1.0, 2).mesh;
+  std::vector<std::array<int64_t, 3>> faces;
+  for (int64_t f = 0; f < sphere.numTriangles(); ++f)
+  {
+    faces.push_back({ sphere.triangles[3 * f], sphere.triangles[3 * f + 1],
+      sphere.triangles[3 * f + 2] });
+  }
+  tc::PolygonSoup soup;
+  soup.points = sphere.points;
+  auto add = [&](const std::array<double, 3>& p)
+  {
+    soup.points.insert(soup.points.end(), p.begin(), p.end());
+    return soup.numPoints() - 1;
+  };
+  auto at = [&](int64_t v) { return sphere.point(v); };
+  // Needles: edge (a, b) of face 0 and its twin (b, a, d).
+  const int64_t a = faces[0][0], b = faces[0][1], c = faces[0][2];
+  size_t twin = 0;
+  int64_t d = -1;
+  for (size_t f = 1; f < faces.size(); ++f)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (faces[f][k] == b && faces[f][(k + 1) % 3] == a)
+      {
+        twin = f;
+        d = faces[f][(k + 2) % 3];
+      }
+    }
+  }
+  std::array<double, 3> p{};
+  for (int x = 0; x < 3; ++x)
+  {
+    p[x] = at(a)[x] + 0.03 * (at(b)[x] - at(a)[x]);
+  }
+  const int64_t n = add(p);
+  faces[0] = { a, n, c };
+  faces.push_back({ n, b, c });
+  faces[twin] = { b, n, d };
+  faces.push_back({ n, a, d });
+  // Cap: the last original face (e, f, g), far from face 0.
+  const size_t last = static_cast<size_t>(sphere.numTriangles() - 1);
+  const int64_t e = faces[last][0], f = faces[last][1], g = faces[last][2];
+  std::array<double, 3> q{};
+  for (int x = 0; x < 3; ++x)
+  {
+    const double mid = 0.5 * (at(e)[x] + at(f)[x]);
+    q[x] = mid + 0.01 * (at(g)[x] - mid);
+  }
+  const int64_t m = add(q);
+  faces[last] = { e, f, m };
+  faces.push_back({ f, g, m });
+  faces.push_back({ g, e, m });
+  soup.offsets.push_back(0);
+  for (const auto& t : faces)
+  {
+    soup.connectivity.insert(soup.connectivity.end(), t.begin(), t.end());
+    soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  }
+  return soup;
+}
+
+/// Triangles with an angle above 170 degrees or a side 10 times another.
+int64_t countSlivers(const tc::TriMesh& mesh)
+{
+  int64_t count = 0;
+  for (int64_t f = 0; f < mesh.numTriangles(); ++f)
+  {
+    double len[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::array<double, 3> u = cornerVector(mesh, f, (k + 1) % 3, (k + 2) % 3);
+      len[k] = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    }
+    std::sort(len, len + 3);
+    const double largestAngle = std::acos(
+      std::clamp((len[0] * len[0] + len[1] * len[1] - len[2] * len[2]) / (2 * len[0] * len[1]),
+        -1.0, 1.0));
+    count += len[2] > 10 * len[0] || largestAngle > 170.0 * M_PI / 180.0 ? 1 : 0;
+  }
+  return count;
+}
+} // namespace
+
+TEST(Preparation, SliversAreCollapsedAndFlippedWhenAsked)
+{
+  const tc::PolygonSoup soup = sphereWithSlivers();
+  const tc::PreparationResult plain = tc::prepareMesh(soup);
+  EXPECT_EQ(countSlivers(plain.mesh), 3);
+  EXPECT_EQ(plain.report.slivers, 0); // not looked for
+
+  tc::PreparationOptions options;
+  options.removeSlivers = true;
+  const tc::PreparationResult r = tc::prepareMesh(soup, options);
+  const tc::PreparationReport& report = r.report;
+  EXPECT_EQ(report.slivers, 3);
+  EXPECT_EQ(report.remainingSlivers, 0);
+  EXPECT_EQ(countSlivers(r.mesh), 0);
+  // The needles go with one collapse (one point and their two triangles); the cap's longest
+  // side is flipped, and the collapse reshapes the triangles round the point it removed.
+  EXPECT_EQ(report.sliverPoints, 1);
+  EXPECT_EQ(r.mesh.numPoints(), plain.mesh.numPoints() - 1);
+  EXPECT_EQ(r.mesh.numTriangles(), plain.mesh.numTriangles() - 2);
+  EXPECT_GE(report.reshapedTriangles, 2);
+  EXPECT_TRUE(report.changed());
+  EXPECT_TRUE(contains(report.text(), "found 3 slivers (caps and needles): collapsed 1 point"))
+    << report.text();
+  EXPECT_FALSE(contains(report.text(), "left")) << report.text();
+  expectManifold(r.mesh);
+  EXPECT_TRUE(consistentlyOriented(r.mesh));
+  EXPECT_EQ(report.closedComponents, 1);
+  EXPECT_EQ(
+    r.mesh.numPoints() - tc::buildEdgeTable(r.mesh.triangles).numEdges() + r.mesh.numTriangles(),
+    2);
+  EXPECT_NEAR(signedVolume(r.mesh), signedVolume(plain.mesh), 1e-3);
+  // No point moved; the per-element arrays follow the kept points and triangles.
+  ASSERT_EQ(r.inputPointId.size(), static_cast<size_t>(r.mesh.numPoints()));
+  ASSERT_EQ(r.inputCellId.size(), static_cast<size_t>(r.mesh.numTriangles()));
+  ASSERT_EQ(r.nonManifoldVertex.size(), r.inputPointId.size());
+  ASSERT_EQ(r.boundaryVertex.size(), r.inputPointId.size());
+  ASSERT_EQ(r.componentId.size(), r.inputCellId.size());
+  for (int64_t v = 0; v < r.mesh.numPoints(); ++v)
+  {
+    ASSERT_GE(r.inputPointId[v], 0);
+    EXPECT_TRUE(v == 0 || r.inputPointId[v] > r.inputPointId[v - 1]);
+    for (int x = 0; x < 3; ++x)
+    {
+      EXPECT_EQ(r.mesh.points[3 * v + x], soup.points[3 * r.inputPointId[v] + x]);
+    }
+  }
+  for (int64_t f = 0; f < r.mesh.numTriangles(); ++f)
+  {
+    EXPECT_TRUE(f == 0 || r.inputCellId[f] > r.inputCellId[f - 1]);
+  }
+
+  // Deterministic.
+  const tc::PreparationResult again = tc::prepareMesh(soup, options);
+  EXPECT_EQ(again.mesh.points, r.mesh.points);
+  EXPECT_EQ(again.mesh.triangles, r.mesh.triangles);
+}
+
+TEST(Preparation, SliversOfANonManifoldMeshAreRefusedUntilSplit)
+{
+  tc::PolygonSoup soup = sphereWithSlivers();
+  const int64_t a = soup.connectivity[0], b = soup.connectivity[1];
+  soup.points.insert(soup.points.end(), { 3.0, 3.0, 3.0 });
+  soup.connectivity.insert(soup.connectivity.end(), { a, b, soup.numPoints() - 1 });
+  soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  tc::PreparationOptions options;
+  options.removeSlivers = true;
+  const std::string error = preparationError(soup, options);
+  EXPECT_TRUE(contains(error, "cannot remove slivers")) << error;
+  EXPECT_TRUE(contains(error, "--split-non-manifold")) << error;
+  options.splitNonManifold = true;
+  const tc::PreparationResult r = tc::prepareMesh(soup, options);
+  // The fin, split off, is a lone needle: no collapse keeps it a triangle, so it stays.
+  EXPECT_EQ(r.report.slivers, 4);
+  EXPECT_EQ(r.report.remainingSlivers, 1);
+  EXPECT_EQ(countSlivers(r.mesh), 1);
+  EXPECT_TRUE(contains(r.report.text(), "left 1 sliver")) << r.report.text();
+}

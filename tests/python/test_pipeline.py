@@ -126,3 +126,50 @@ def test_fill_holes_closes_an_open_sphere():
     # Loops longer than max_hole_edges stay open.
     _, report = trichart.prepare(kept, fill_holes=True, max_hole_edges=10)
     assert "left 2 holes open" in report
+
+
+def _slivers(mesh, max_angle=170.0, max_ratio=10.0):
+    """Triangles of `mesh` with an angle above max_angle degrees or a side max_ratio times
+    another."""
+    from vtkmodules.vtkCommonCore import vtkIdList
+
+    ids = vtkIdList()
+    count = 0
+    for c in range(mesh.GetNumberOfCells()):
+        mesh.GetCellPoints(c, ids)
+        p = [mesh.GetPoint(ids.GetId(k)) for k in range(3)]
+        sides = sorted(math.dist(p[k], p[(k + 1) % 3]) for k in range(3))
+        cosine = (sides[0] ** 2 + sides[1] ** 2 - sides[2] ** 2) / (2 * sides[0] * sides[1])
+        count += sides[2] > max_ratio * sides[0] or cosine < math.cos(math.radians(max_angle))
+    return count
+
+
+def test_remove_slivers_collapses_the_needles_of_a_uv_sphere():
+    # 96 meridians and 32 parallels: the triangles next to the poles have sides 15 times
+    # their shortest.
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+
+    source = vtkSphereSource()
+    source.SetThetaResolution(96)
+    source.SetPhiResolution(32)
+    source.Update()
+    sphere = source.GetOutput()
+    plain, report = trichart.prepare(sphere)
+    needles = _slivers(plain)
+    assert needles > 100 and "sliver" not in report
+
+    clean, report = trichart.prepare(sphere, remove_slivers=True)
+    print(report)
+    left = _slivers(clean)
+    assert f"found {needles} slivers" in report
+    assert left < needles / 10 and (f"left {left} sliver" in report) == (left > 0)
+    assert clean.GetNumberOfPoints() < plain.GetNumberOfPoints()
+    # No point moved: every output point is where its input point was.
+    input_ids = clean.GetPointData().GetArray("InputPointId")
+    for i in range(clean.GetNumberOfPoints()):
+        assert clean.GetPoint(i) == sphere.GetPoint(input_ids.GetValue(i))
+    boundary = clean.GetPointData().GetArray("BoundaryVertex")
+    assert max(boundary.GetValue(i) for i in range(boundary.GetNumberOfTuples())) == 0
+    # A looser needle ratio leaves them.
+    _, report = trichart.prepare(sphere, remove_slivers=True, sliver_edge_ratio=20.0)
+    assert "sliver" not in report

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/mesh_preparation.h"
 
-#include "hole_filling.h"
+#include "surface_repair.h"
 
 #include "tc/errors.h"
 #include "tc/mesh_topology.h"
@@ -950,7 +950,7 @@ bool PreparationReport::changed() const
 {
   return polygonsTriangulated > 0 || mergedPoints > 0 || degenerateFaces > 0 ||
     duplicateFaces > 0 || flippedFaces > 0 || unusedPoints > 0 || splitVertices > 0 ||
-    filledHoles > 0;
+    filledHoles > 0 || sliverPoints > 0 || reshapedTriangles > 0;
 }
 
 std::string PreparationReport::text() const
@@ -994,6 +994,13 @@ std::string PreparationReport::text() const
   line(openHoles,
     "left " + plural(openHoles, "hole", "holes") +
       " open (more boundary edges than MaxHoleEdges, or no manifold patch)");
+  line(slivers,
+    "found " + plural(slivers, "sliver", "slivers") + " (caps and needles): collapsed " +
+      plural(sliverPoints, "point", "points") + " and reshaped " +
+      plural(reshapedTriangles, "triangle", "triangles"));
+  line(remainingSlivers,
+    "left " + plural(remainingSlivers, "sliver", "slivers") +
+      " (no collapse or flip removes them without a fold)");
   line(boundaryEdges, plural(boundaryEdges, "boundary edge", "boundary edges"));
   line(components, plural(components, "connected component", "connected components"));
   line(closedComponents, plural(closedComponents, "closed component", "closed components"));
@@ -1245,6 +1252,28 @@ PreparationResult prepareMesh(
   markBoundary(edges, numVertices, result);
   progress.report(0.8);
 
+  // Why a CGAL repair found the mesh not manifold, and what to do.
+  auto notManifold = [&](const std::string& what, const char* option)
+  {
+    std::string why;
+    if (!options.splitNonManifold && report.nonManifoldEdges + report.nonManifoldVertices > 0)
+    {
+      why = plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") + " and " +
+        plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
+        "; split them first (SplitNonManifold, --split-non-manifold)";
+    }
+    else
+    {
+      why = plural(report.nonOrientableComponents, "non-orientable component",
+              "non-orientable components") +
+        " (Moebius-like), which no patch closes consistently; repair the mesh in a mesh "
+        "editor, or leave " +
+        option + " off";
+    }
+    return InputError(
+      "mesh preparation: cannot " + what + ": the mesh is not an oriented manifold: " + why);
+  };
+
   // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   int64_t nf = numKept;
   if (options.fillHoles)
@@ -1252,26 +1281,10 @@ PreparationResult prepareMesh(
     if (report.boundaryEdges > 0)
     {
       const HoleFilling filled =
-        fillHoles(result.mesh, options.maxHoleEdges, progress.sub(0.8, 0.95));
+        fillHoles(result.mesh, options.maxHoleEdges, progress.sub(0.8, 0.9));
       if (filled.nonManifold)
       {
-        std::string why;
-        if (!options.splitNonManifold && report.nonManifoldEdges + report.nonManifoldVertices > 0)
-        {
-          why = plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
-            " and " +
-            plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
-            "; split them first (SplitNonManifold, --split-non-manifold)";
-        }
-        else
-        {
-          why = plural(report.nonOrientableComponents, "non-orientable component",
-                  "non-orientable components") +
-            " (Moebius-like), which no patch closes consistently; repair the mesh in a mesh "
-            "editor, or leave FillHoles off";
-        }
-        throw InputError(
-          "mesh preparation: cannot fill holes: the mesh is not an oriented manifold: " + why);
+        throw notManifold("fill holes", "FillHoles");
       }
       report.filledHoles = filled.filledHoles;
       report.holeTriangles = filled.addedTriangles;
@@ -1289,6 +1302,43 @@ PreparationResult prepareMesh(
         edges = buildEdgeTable(tri);
         orientComponents(options.orient, edges, result);
       }
+      markBoundary(edges, numVertices, result);
+    }
+  }
+  progress.report(0.9);
+
+  // 10. Slivers (opt-in), last, so that hole patches are repaired too. Only drops points and
+  // triangles and changes corners: the per-element arrays follow the kept ones.
+  if (options.removeSlivers)
+  {
+    SliverRemoval removed = tc::removeSlivers(
+      result.mesh, options.sliverAngle, options.sliverEdgeRatio, progress.sub(0.9, 1.0));
+    if (removed.nonManifold)
+    {
+      throw notManifold("remove slivers", "RemoveSlivers");
+    }
+    report.slivers = removed.slivers;
+    report.sliverPoints = removed.collapsedPoints;
+    report.reshapedTriangles = removed.reshapedTriangles;
+    report.remainingSlivers = removed.remainingSlivers;
+    if (removed.collapsedPoints > 0 || removed.reshapedTriangles > 0)
+    {
+      auto keep = [](auto& values, const std::vector<int32_t>& kept)
+      {
+        for (size_t i = 0; i < kept.size(); ++i)
+        {
+          values[i] = values[kept[i]];
+        }
+        values.resize(kept.size());
+      };
+      keep(result.inputPointId, removed.keptPoints);
+      keep(result.nonManifoldVertex, removed.keptPoints);
+      keep(result.inputCellId, removed.keptTriangles);
+      keep(result.nonManifoldEdge, removed.keptTriangles);
+      numVertices = static_cast<int32_t>(removed.keptPoints.size());
+      nf = static_cast<int64_t>(removed.keptTriangles.size());
+      edges = buildEdgeTable(tri);
+      orientComponents(options.orient, edges, result);
       markBoundary(edges, numVertices, result);
     }
   }

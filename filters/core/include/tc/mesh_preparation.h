@@ -32,11 +32,21 @@ struct PreparationOptions
   /// loops are usually a surface's outer border (a terrain, a scan of one side), which a lid
   /// would not repair.
   int64_t maxHoleEdges = 1000;
+  /// Remove slivers, last (after hole filling): collapse the shortest edge of each needle
+  /// (longest side over shortest above sliverEdgeRatio) into the endpoint that changes the volume
+  /// least, flip the longest edge of each cap (an angle above sliverAngle), wherever that keeps
+  /// the topology and folds no triangle (CGAL's remove_almost_degenerate_faces). Scans often
+  /// have thousands: the base complex keeps them (a collapse may make triangles as thin as the
+  /// ones it removes) and the paths cannot be traced through its near-flat stars. No point
+  /// moves; collapsed points are dropped. Needs a manifold mesh (splitNonManifold).
+  bool removeSlivers = false;
+  double sliverAngle = 170.0;    ///< degrees, 90 .. 180: a larger angle makes a cap
+  double sliverEdgeRatio = 10.0; ///< > 1: a larger ratio of longest to shortest side, a needle
 };
 
 /// What tcMeshPreparation found and changed. Counts of removed things refer to the stage in
 /// which they were removed: inputPoints = mergedPoints + unusedPoints + (outputPoints -
-/// splitVertices).
+/// splitVertices - holePoints + sliverPoints).
 struct PreparationReport
 {
   int64_t inputPoints = 0;
@@ -57,6 +67,10 @@ struct PreparationReport
   int64_t unfairedHoles = 0;        ///< filled holes whose patch could not be faired
   int64_t openHoles = 0;            ///< loops fillHoles left open (too long, or no manifold
                                     ///< triangulation, or a non-manifold mesh)
+  int64_t slivers = 0;              ///< with removeSlivers: caps and needles found
+  int64_t sliverPoints = 0;         ///< points collapsed away to remove needles
+  int64_t reshapedTriangles = 0;    ///< output triangles with new corners (cap flips)
+  int64_t remainingSlivers = 0;     ///< slivers no valid collapse or flip removed
   int64_t boundaryEdges = 0;        ///< output edges with exactly 1 triangle
   int64_t components = 0;           ///< edge-connected components of the output
   int64_t nonOrientableComponents = 0; ///< components left unoriented (Moebius-like)
@@ -91,9 +105,11 @@ struct PreparationResult
 /// Cleans a polygon soup into a triangle mesh, in this order: validate; merge duplicate points;
 /// triangulate polygons (ear clipping in the plane of the Newell normal); drop degenerate and
 /// duplicate triangles; find non-manifold edges and vertices (and split them if asked); orient;
-/// fill holes (if asked) and orient again; count boundary edges and components. Output points
+/// fill holes (if asked) and orient again; remove slivers (if asked); count boundary edges and
+/// components. Output points
 /// keep the input order (split copies, then hole-filling points are appended); output
-/// triangles keep the polygon order (hole-filling triangles appended). Deterministic.
+/// triangles keep the polygon order (hole-filling triangles appended; sliver removal only drops
+/// points and triangles). Deterministic.
 ///
 /// @param[in] soup      #V points, #P polygons with ids in [0, #V)
 /// @param[in] options   see PreparationOptions
