@@ -773,6 +773,36 @@ TEST(PathTracing, OctahedronTracesItsEdgesOntoItsOwnEdges)
   }
 }
 
+TEST(PathTracing, APointNextToABaseEdgeStaysOffItWhereSnappingWouldFlattenATriangle)
+{
+  // The centre of base face 0 moved to 5e-7 (barycentric) from its side (t0, t2): a sliver of a
+  // scan next to a short base edge. Input triangle (t2, t0, centre) then has 5e-7 of the face's
+  // area; snapped onto the side (what round-off of other points gets), it would have none, and
+  // the side's path could not be cut through it.
+  Octahedron o = octahedron(false);
+  const double w[3] = { 0.5 - 2.5e-7, 5e-7, 0.5 - 2.5e-7 };
+  for (int a = 0; a < 3; ++a)
+  {
+    double x = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      x += w[k] * o.mesh.points[3 * o.base.baseTriangles[k] + a];
+    }
+    o.mesh.points[3 * 6 + a] = x;
+  }
+  o.base.vertexBarycentric[3 * 6] = w[0];
+  o.base.vertexBarycentric[3 * 6 + 1] = w[1];
+  o.base.vertexBarycentric[3 * 6 + 2] = w[2];
+  const tc::PatchMesh p = tc::tracePaths(o.mesh, o.base);
+  EXPECT_TRUE(p.steinerParameter.empty());
+  EXPECT_EQ(p.mesh.triangles, o.mesh.triangles);
+  for (int64_t t = 0; t < 24; ++t)
+  {
+    EXPECT_EQ(p.patchId[t], o.mesh.triangles[3 * t + 2] - 6);
+  }
+  EXPECT_TRUE(closedOrientedManifold(p.mesh));
+}
+
 TEST(PathTracing, OctahedronWithFlippedEdgesIsCutThroughTheMiddleOfEachFlippedEdge)
 {
   // Unfolded, the two faces of a base edge are a rhombus; the segment between their centroids

@@ -54,7 +54,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// then passes through the point instead of cutting slivers off its triangles (a point 5e-9 off
 /// an edge on fandisk left pieces of 1e-14 of their triangle). MAPS places feature vertices
 /// exactly (barycentric 0); snapping others moves them by at most 1e-6 of a base triangle, and a
-/// point next to a base vertex (two small barycentrics) is not snapped onto either edge.
+/// point next to a base vertex (two small barycentrics) is not snapped onto either edge, nor a
+/// point whose snap would put a whole input triangle on one base edge (a sliver of a scan next to
+/// a short base edge: its area in the base domain is itself below kSnap, and snapped it would
+/// have none; see Tracer::keepOffEdges).
 constexpr double kSnap = 1e-6;
 /// Most base edges one input edge may cross (in a star: the valence of its centre).
 constexpr int kMaxCrossings = 64;
@@ -202,7 +205,10 @@ private:
   void validate(const Progress& progress);
   void buildTopology(const Progress& progress);
   void buildBase();
-  Support support(int32_t w) const;
+  /// The image of w, snapped onto a base edge unless keepOffEdges() forbade it.
+  Support support(int32_t w) const { return this->image(w, !NoSnap_[w]); }
+  Support image(int32_t w, bool snap) const;
+  void keepOffEdges();
   int32_t faceOf(int32_t a, int32_t b) const;
   int32_t edgeIndex(int32_t a, int32_t b) const;
   bool faceHas(int32_t g, int32_t v) const
@@ -246,6 +252,7 @@ private:
 
   std::vector<int32_t> Opp_;       ///< twin of every half-edge 3f + i (corner i to corner i + 1)
   std::vector<int32_t> BaseIndex_; ///< input vertex -> base vertex, -1 if none
+  std::vector<uint8_t> NoSnap_;    ///< input vertices that support() never snaps onto an edge
 
   std::vector<std::pair<int64_t, int32_t>> DirectedBase_; ///< (a << 32 | b) -> base face, sorted
   std::vector<StarChart> Stars_;
@@ -314,6 +321,7 @@ void Tracer::validate(const Progress& progress)
   {
     BaseIndex_[Base_.baseVertices[i]] = i;
   }
+  NoSnap_.assign(NV_, 0);
   // Every image must be a point of its base face; a vertex other than a base vertex must not
   // land on a base vertex (two input vertices at one point of the base complex cannot be cut
   // apart). The first bad vertex is reported, whatever the thread count.
@@ -355,6 +363,7 @@ void Tracer::validate(const Progress& progress)
       "vertex on its own corner, no other point on a base vertex); rebuild the base complex "
       "from this mesh");
   }
+  this->keepOffEdges();
 }
 
 void Tracer::buildTopology(const Progress& progress)
@@ -641,7 +650,7 @@ std::string Tracer::pointName(int32_t p) const
     std::to_string(Result_.steinerEdge[2 * s + 1]);
 }
 
-Support Tracer::support(int32_t w) const
+Support Tracer::image(int32_t w, bool snap) const
 {
   Support s;
   if (BaseIndex_[w] >= 0)
@@ -671,7 +680,7 @@ Support Tracer::support(int32_t w) const
   }
   // Round-off of a point on a base edge: put it on the edge. Not when two are small: that is a
   // point next to a base vertex, which is on neither edge.
-  if (small == 1 && l[(which + 1) % 3] >= kSnap && l[(which + 2) % 3] >= kSnap)
+  if (snap && small == 1 && l[(which + 1) % 3] >= kSnap && l[(which + 2) % 3] >= kSnap)
   {
     const double rest = 1.0 - l[which];
     l[which] = 0.0;
@@ -688,6 +697,77 @@ Support Tracer::support(int32_t w) const
     }
   }
   return s;
+}
+
+/// Forbids the snaps that would flatten or flip an input triangle. For a triangle whose corners'
+/// exact images lie in one base face g with positive area, the snapped images must keep a
+/// positive area in g; where they do not, its snapped corners keep their exact images. A
+/// removed snap can turn another triangle (one corner still snapped) over, so the check runs
+/// until nothing changes; snaps are only ever removed, so that ends.
+void Tracer::keepOffEdges()
+{
+  std::vector<uint8_t> snapped(NV_, 0);
+  tc::parallel_for(NV_,
+    [&](int64_t i)
+    {
+      const int32_t v = static_cast<int32_t>(i);
+      snapped[v] = BaseIndex_[v] < 0 && this->image(v, true).n < this->image(v, false).n ? 1 : 0;
+    });
+  // The signed area in base face g of the images of the corners of f (0 when g misses one).
+  auto area = [&](int32_t g, const Support* s)
+  {
+    double l[3][3];
+    for (int i = 0; i < 3; ++i)
+    {
+      if (!this->faceHolds(g, s[i]))
+      {
+        return 0.0;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        l[i][k] = s[i].weight(Base_.baseTriangles[3 * g + k]);
+      }
+    }
+    return l[0][0] * (l[1][1] * l[2][2] - l[1][2] * l[2][1]) -
+      l[0][1] * (l[1][0] * l[2][2] - l[1][2] * l[2][0]) +
+      l[0][2] * (l[1][0] * l[2][1] - l[1][1] * l[2][0]);
+  };
+  std::vector<int32_t> candidates;
+  for (int32_t f = 0; f < NF_; ++f)
+  {
+    const int32_t* c = &Mesh_.triangles[3 * static_cast<size_t>(f)];
+    if (snapped[c[0]] || snapped[c[1]] || snapped[c[2]])
+    {
+      candidates.push_back(f);
+    }
+  }
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    for (int32_t f : candidates)
+    {
+      const int32_t* c = &Mesh_.triangles[3 * static_cast<size_t>(f)];
+      Support exact[3], now[3];
+      for (int i = 0; i < 3; ++i)
+      {
+        exact[i] = this->image(c[i], false);
+        now[i] = this->support(c[i]);
+      }
+      for (int i = 0; i < 3; ++i)
+      {
+        const int32_t g = Base_.vertexBaseFace[c[i]];
+        if (area(g, exact) > 0.0 && !(area(g, now) > 0.0))
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            changed |= snapped[c[j]] && !NoSnap_[c[j]];
+            NoSnap_[c[j]] |= snapped[c[j]];
+          }
+          break;
+        }
+      }
+    }
+  }
 }
 
 /// Routes that need no chart: both images in one base face, or on one base edge. False if not.
@@ -1526,9 +1606,10 @@ PatchMesh Tracer::run(const Progress& progress)
   {
     throw InputError("tracePaths: the mesh is too large");
   }
-  const std::string rebuild = "; the parameterization is not one-to-one there: rebuild the base "
-                              "complex with checkBijection on, or with a coarser target (fewer "
-                              "base faces)";
+  const std::string rebuild =
+    "; the parameterization is not one-to-one there: rebuild the base complex with "
+    "checkBijection on, or with a coarser target (fewer base faces); a scan's slivers (near-flat "
+    "triangles) cause this: remove them in the preparation (RemoveSlivers, --remove-slivers)";
 
   // 1. The input edges that lie on a base edge, and the triangles inside one base face, which
   // keep it; the others are cut.
