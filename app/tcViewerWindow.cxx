@@ -567,6 +567,10 @@ QWidget* tcViewerWindow::BuildPreparationPanel()
   this->FillHoles = new QCheckBox(w);
   this->FillHoles->setChecked(this->Preparation->GetFillHoles());
   form->addRow("FillHoles", this->FillHoles);
+  this->RemoveSlivers = new QCheckBox(w);
+  this->RemoveSlivers->setChecked(this->Preparation->GetRemoveSlivers());
+  this->RemoveSlivers->setToolTip("Collapse needles and flip caps (a scan's slivers)");
+  form->addRow("RemoveSlivers", this->RemoveSlivers);
   return w;
 }
 
@@ -735,6 +739,11 @@ QWidget* tcViewerWindow::BuildGeometryImagesPanel()
   this->StretchIterations->setToolTip(
     "Stretch-reducing passes over each chart's mean-value map; 0: Floater's map alone");
   form->addRow("StretchIterations", this->StretchIterations);
+  this->FitSamples = new QCheckBox(w);
+  this->FitSamples->setChecked(g->GetFitSamples());
+  this->FitSamples->setToolTip(
+    "Fit the finest samples to the surface by least squares instead of interpolating it");
+  form->addRow("FitSamples", this->FitSamples);
   return w;
 }
 
@@ -859,6 +868,7 @@ void tcViewerWindow::PushParameters()
   this->Preparation->SetOrient(this->Orient->isChecked());
   this->Preparation->SetSplitNonManifold(this->SplitNonManifold->isChecked());
   this->Preparation->SetFillHoles(this->FillHoles->isChecked());
+  this->Preparation->SetRemoveSlivers(this->RemoveSlivers->isChecked());
   this->Curvature->SetMinNeighbors(this->MinNeighbors->value());
   this->Curvature->SetMaxRings(this->MaxRings->value());
   this->Curvature->SetDegree(this->Degree->value());
@@ -885,6 +895,7 @@ void tcViewerWindow::PushParameters()
   this->GeometryImages->SetCurvatureWeight(this->CurvatureWeight->value());
   this->GeometryImages->SetLevelRule(this->LevelRule->currentIndex());
   this->GeometryImages->SetStretchIterations(this->StretchIterations->value());
+  this->GeometryImages->SetFitSamples(this->FitSamples->isChecked());
   this->Reconstruction->SetLevel(this->Level->value());
 }
 

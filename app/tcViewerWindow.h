@@ -254,6 +254,7 @@ private:
   QCheckBox* Orient = nullptr;
   QCheckBox* SplitNonManifold = nullptr;
   QCheckBox* FillHoles = nullptr;
+  QCheckBox* RemoveSlivers = nullptr;
   QSpinBox* MinNeighbors = nullptr;
   QSpinBox* MaxRings = nullptr;
   QSpinBox* Degree = nullptr;
@@ -280,6 +281,7 @@ private:
   QDoubleSpinBox* CurvatureWeight = nullptr;
   QComboBox* LevelRule = nullptr;
   QSpinBox* StretchIterations = nullptr;
+  QCheckBox* FitSamples = nullptr;
   QSpinBox* Level = nullptr;
   QDoubleSpinBox* LODBias = nullptr;
   QDoubleSpinBox* ErrorTarget = nullptr;

@@ -28,6 +28,7 @@ tcGeometryImages::tcGeometryImages()
   this->CurvatureWeight = defaults.curvatureWeight;
   this->LevelRule = static_cast<int>(defaults.levelRule);
   this->StretchIterations = defaults.stretchIterations;
+  this->FitSamples = defaults.fitSamples;
 }
 
 tcGeometryImages::~tcGeometryImages() = default;
@@ -119,6 +120,7 @@ int tcGeometryImages::RequestData(
   options.levelRule =
     this->LevelRule == LEVEL_RULE_AREA ? tc::LevelRule::Area : tc::LevelRule::Error;
   options.stretchIterations = this->StretchIterations;
+  options.fitSamples = this->FitSamples;
   tc::Atlas atlas;
   try
   {
@@ -147,6 +149,7 @@ void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "LevelRule: " << (this->LevelRule == LEVEL_RULE_AREA ? "Area" : "Error") << "\n";
   os << indent << "StretchIterations: " << this->StretchIterations << "\n";
+  os << indent << "FitSamples: " << this->FitSamples << "\n";
   os << indent << "ResampledArrays:";
   for (const std::string& name : this->ResampledArrays)
   {

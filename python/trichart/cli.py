@@ -77,7 +77,8 @@ def cmd_build(args):
     bar = None if args.quiet else ProgressBar()
     start = time.perf_counter()
     options = {"max_level": args.max_level, "sample_budget": args.budget,
-               "stretch_iterations": args.stretch_iterations}
+               "stretch_iterations": args.stretch_iterations,
+               "fit_samples": not args.no_fit}
     try:
         result = build(args.mesh, args.output, stages=args.stages, progress=bar,
                        image=not args.no_image,
@@ -194,6 +195,9 @@ def main(argv=None):
     p.add_argument("--stretch-iterations", type=int, default=10,
                    help="stretch-reducing passes over each chart's mean-value map, 0 .. 100 "
                         "(default 10; 0: the mean-value map alone)")
+    p.add_argument("--no-fit", action="store_true",
+                   help="interpolate the surface at the finest samples instead of fitting "
+                        "them to it by least squares")
     p.add_argument("--no-image", action="store_true", help="no pictures with --stages")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p = sub.add_parser("mesh", help="rebuild a mesh from an atlas at one level")

@@ -670,8 +670,30 @@ struct Case
   tc::Atlas atlas;
 };
 
-/// The regular sphere, 16 x 16 triangles per octant, budget 0 (as many samples as points).
+/// Options that interpolate the surface at every sample (no least-squares fit), so that the
+/// samples lie on it.
+tc::GeometryImageOptions interpolating()
+{
+  tc::GeometryImageOptions options;
+  options.fitSamples = false;
+  return options;
+}
+
+/// The regular sphere, 16 x 16 triangles per octant, budget 0 (as many samples as points),
+/// samples interpolated.
 const Case& sphereCase()
+{
+  static const Case c = []
+  {
+    Case k{ sphere(16), {} };
+    k.atlas = tc::buildGeometryImages(k.input.patches, k.input.base, {}, {}, {}, interpolating());
+    return k;
+  }();
+  return c;
+}
+
+/// The same sphere with the default options: interior and side samples fitted.
+const Case& fittedSphereCase()
 {
   static const Case c = []
   {
@@ -683,7 +705,8 @@ const Case& sphereCase()
 }
 
 /// The sphere on an octahedron with its top tilted 60 degrees (octants from 2.1 to 10.3 in
-/// area), budget 3000, with a 1- and a 2-component extra attribute linear in the position.
+/// area), budget 3000, with a 1- and a 2-component extra attribute linear in the position;
+/// samples interpolated.
 const Case& skewedCase()
 {
   static const Case c = []
@@ -698,7 +721,7 @@ const Case& skewedCase()
       height.values.push_back(p[2]);
       twice.values.insert(twice.values.end(), { 2.0 * p[0], -p[1] });
     }
-    tc::GeometryImageOptions options;
+    tc::GeometryImageOptions options = interpolating();
     options.sampleBudget = 3000;
     k.atlas =
       tc::buildGeometryImages(k.input.patches, k.input.base, {}, {}, { height, twice }, options);
@@ -849,6 +872,88 @@ TEST(GeometryImages, SphereSamplesLieOnTheSphereWithinTheChordError)
   EXPECT_NEAR(atlas.inputDiagonal, 2.0 * kRadius * std::sqrt(3.0), 1e-12);
   // Budget 0: at most as many samples as input points.
   EXPECT_LE(finestSamples(atlas), s.patches.mesh.numPoints());
+}
+
+namespace
+{
+/// Largest and RMS distance from the sphere of the finest level's surface of `atlas`, at every
+/// grid triangle's corners, edge midpoints and centroid.
+std::pair<double, double> sphereDeviation(const tc::Atlas& atlas)
+{
+  double worst = 0.0, sum2 = 0.0;
+  int64_t count = 0;
+  auto at = [&](int32_t c, int32_t d, int32_t i, int32_t j)
+  { return toVec(tc::atlasSample(atlas, c, 0, d, i, j)); };
+  for (int32_t c = 0; c < static_cast<int32_t>(atlas.charts.size()); ++c)
+  {
+    const int32_t d = atlas.charts[c].maxLevel, n = 1 << d;
+    for (int32_t j = 0; j < n; ++j)
+    {
+      for (int32_t i = 0; i + j < n; ++i)
+      {
+        for (int upper = 0; upper < (i + j + 1 < n ? 2 : 1); ++upper)
+        {
+          const Vec a = upper ? at(c, d, i + 1, j + 1) : at(c, d, i, j);
+          const Vec b = upper ? at(c, d, i, j + 1) : at(c, d, i + 1, j);
+          const Vec e = upper ? at(c, d, i + 1, j) : at(c, d, i, j + 1);
+          const double w[7][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0.5, 0.5, 0 },
+            { 0, 0.5, 0.5 }, { 0.5, 0, 0.5 }, { 1 / 3.0, 1 / 3.0, 1 / 3.0 } };
+          for (const auto& x : w)
+          {
+            Vec p{};
+            for (int k = 0; k < 3; ++k)
+            {
+              p[k] = x[0] * a[k] + x[1] * b[k] + x[2] * e[k];
+            }
+            const double dev = std::abs(norm(p) - kRadius);
+            worst = std::max(worst, dev);
+            sum2 += dev * dev;
+            ++count;
+          }
+        }
+      }
+    }
+  }
+  return { worst, std::sqrt(sum2 / static_cast<double>(count)) };
+}
+} // namespace
+
+TEST(GeometryImages, FittedSamplesStraddleTheSphereAndHalveItsLargestDeviation)
+{
+  // Interpolated samples lie on the sphere and every grid triangle below it, by up to its
+  // sagitta; fitted ones move out (sides too), so that the surface lies on both sides.
+  const tc::Atlas& fitted = fittedSphereCase().atlas;
+  const tc::Atlas& interpolated = sphereCase().atlas;
+  expectAtlasInvariants(fitted);
+  ASSERT_EQ(fitted.charts.size(), interpolated.charts.size());
+  double above = 0.0, sideAbove = 0.0;
+  for (int32_t c = 0; c < 8; ++c)
+  {
+    ASSERT_EQ(fitted.charts[c].maxLevel, interpolated.charts[c].maxLevel);
+    const int32_t d = fitted.charts[c].maxLevel, n = 1 << d;
+    for (int32_t j = 0; j <= n; ++j)
+    {
+      for (int32_t i = 0; i + j <= n; ++i)
+      {
+        const double r = norm(toVec(tc::atlasSample(fitted, c, 0, d, i, j)));
+        above = std::max(above, r - kRadius);
+        if (j == 0 && i > 0 && i < n)
+        {
+          sideAbove = std::max(sideAbove, r - kRadius);
+        }
+      }
+    }
+  }
+  const auto [fitWorst, fitRms] = sphereDeviation(fitted);
+  const auto [interpWorst, interpRms] = sphereDeviation(interpolated);
+  std::printf("[          ] sphere, d_max %d: largest / RMS distance to the sphere %.3g / %.3g "
+              "interpolated, %.3g / %.3g fitted; samples up to %.3g above it (sides %.3g)\n",
+    fitted.charts[0].maxLevel, interpWorst, interpRms, fitWorst, fitRms, above, sideAbove);
+  EXPECT_GT(sideAbove, 0.1 * interpWorst);
+  EXPECT_LT(fitWorst, 0.6 * interpWorst);
+  EXPECT_LT(fitRms, 0.6 * interpRms);
+  // levelError is measured on the fitted samples.
+  EXPECT_LT(fitted.charts[0].levelError.back(), interpolated.charts[0].levelError.back());
 }
 
 TEST(GeometryImages, SharedSidesAndCornersAreBitIdenticalAcrossUnequalLevels)
@@ -1278,7 +1383,7 @@ TEST(GeometryImages, FeatureSidesKeepOneSidedNormalsAndIdenticalPositions)
 
 TEST(GeometryImages, OrientedBoxContainsEveryPatchPointAndSample)
 {
-  for (const Case* k : { &skewedCase(), &cubeCase() })
+  for (const Case* k : { &skewedCase(), &cubeCase(), &fittedSphereCase() })
   {
     const Synthetic& s = k->input;
     const tc::Atlas& atlas = k->atlas;
@@ -1469,7 +1574,7 @@ TEST(GeometryImages, SphereCutLikeTracedPathsGivesAValidAtlas)
     flipped += p.flippedTriangles;
     degenerate += p.degenerateTriangles;
   }
-  const tc::Atlas atlas = tc::buildGeometryImages(pm, s.base, {}, {}, {});
+  const tc::Atlas atlas = tc::buildGeometryImages(pm, s.base, {}, {}, {}, interpolating());
   std::printf("[          ] cut sphere: %lld points (%lld Steiner), %lld pieces of %lld input "
               "triangles; %lld flipped, %lld degenerate uv triangles; d_max %d\n",
     static_cast<long long>(pm.mesh.numPoints()), static_cast<long long>(steiner),

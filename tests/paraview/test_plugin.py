@@ -67,7 +67,7 @@ paths = TriChartPathTracing(Input=OutputPort(base, 1))  # noqa: F821
 images = TriChartGeometryImages(Input=paths)  # noqa: F821
 check(images.MinLevel == 2 and images.MaxLevel == 8 and images.SampleBudget == 0
       and images.CurvatureWeight == 1.0 and images.LevelRule == "Error"
-      and images.StretchIterations == 10,
+      and images.StretchIterations == 10 and images.FitSamples == 1,
       "geometry image defaults match the C++ defaults")
 rebuilt = TriChartGeometryImageMesh(Input=images, Level=2)  # noqa: F821
 check(TriChartGeometryImageMesh(Input=images).Level == -1, "rebuild default level")  # noqa: F821

@@ -5,6 +5,7 @@
 #include "tc/parallel.h"
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
@@ -903,6 +904,326 @@ struct ChartGrid
   std::vector<float> values; // gridSamples x SampleLayout::size
 };
 
+/// The grid triangle of level nd (samples per side) holding parameter (u, v), clamped into the
+/// right triangle, and the barycentric weights of its corners (i[k], j[k]).
+struct GridHit
+{
+  int64_t i[3], j[3];
+  double w[3];
+};
+
+GridHit gridHit(double u, double v, int64_t nd)
+{
+  const double x = std::clamp(u, 0.0, 1.0) * nd;
+  const double y = std::clamp(v, 0.0, 1.0) * nd;
+  const int64_t i = std::clamp<int64_t>(static_cast<int64_t>(std::floor(x)), 0, nd - 1);
+  const int64_t j = std::clamp<int64_t>(static_cast<int64_t>(std::floor(y)), 0, nd - 1 - i);
+  double fx = x - i, fy = y - j;
+  if (fx + fy <= 1.0 || i + j + 1 >= nd)
+  {
+    // Lower triangle (i, j), (i + 1, j), (i, j + 1); clamped onto it at the hypotenuse.
+    const double s = fx + fy;
+    if (s > 1.0)
+    {
+      fx /= s;
+      fy /= s;
+    }
+    return { { i, i + 1, i }, { j, j, j + 1 }, { 1.0 - fx - fy, fx, fy } };
+  }
+  // Upper triangle (i + 1, j + 1), (i, j + 1), (i + 1, j).
+  return { { i + 1, i, i + 1 }, { j + 1, j + 1, j }, { fx + fy - 1.0, 1.0 - fx, 1.0 - fy } };
+}
+
+/// Membrane weight on sample offsets, relative to the mean data weight per sample (see
+/// fitInterior), and the definiteness term.
+constexpr double kFitMembrane = 0.1;
+constexpr double kFitDefinite = 1e-3;
+
+/// Solves the symmetric positive definite system of a fit (entries summed, 3 right-hand sides);
+/// an empty matrix if it fails.
+Eigen::MatrixX3d solveOffsets(
+  int32_t n, const std::vector<Eigen::Triplet<double>>& entries, const Eigen::MatrixX3d& rhs)
+{
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  if (ldlt.info() != Eigen::Success)
+  {
+    return {};
+  }
+  Eigen::MatrixX3d x = ldlt.solve(rhs);
+  if (ldlt.info() != Eigen::Success || !x.allFinite())
+  {
+    return {};
+  }
+  return x;
+}
+
+/// Adds data point P with weight w at the place of barycentrics b[] of samples id[] (-1: fixed)
+/// whose current positions are x[] to the normal equations of a fit of the sample offsets.
+template <int K>
+void addFitData(const int32_t (&id)[K], const double (&b)[K], const Vec3 (&x)[K], const Vec3& P,
+  double w, std::vector<Eigen::Triplet<double>>& entries, Eigen::MatrixX3d& rhs)
+{
+  Vec3 r = -P;
+  for (int k = 0; k < K; ++k)
+  {
+    r += b[k] * x[k];
+  }
+  for (int a = 0; a < K; ++a)
+  {
+    if (id[a] < 0)
+    {
+      continue;
+    }
+    rhs.row(id[a]) -= w * b[a] * r.transpose();
+    for (int c = 0; c < K; ++c)
+    {
+      if (id[c] >= 0)
+      {
+        entries.emplace_back(id[a], id[c], w * b[a] * b[c]);
+      }
+    }
+  }
+}
+
+/// levelError[d] of a chart for d = 0 .. upTo: the largest distance from a patch point to the
+/// level-d grid surface at the same (u, v), the piecewise-linear reconstruction in parameter
+/// space; level d is grid g at stride g.n / 2^d.
+std::vector<double> chartLevelErrors(const TriMesh& mesh, const PatchParameterization& p,
+  const ChartGrid& g, const SampleLayout& S, int32_t upTo)
+{
+  std::vector<double> error(static_cast<size_t>(upTo) + 1, 0.0);
+  for (int32_t d = 0; d <= upTo; ++d)
+  {
+    const int64_t nd = int64_t(1) << d;
+    const int64_t stride = g.n / nd;
+    double worst = 0.0;
+    for (size_t v = 0; v < p.points.size(); ++v)
+    {
+      const GridHit h = gridHit(p.uv[2 * v], p.uv[2 * v + 1], nd);
+      Vec3 r = Vec3::Zero();
+      for (int k = 0; k < 3; ++k)
+      {
+        const float* s = &g.values[gridIndex(g.n, h.i[k] * stride, h.j[k] * stride) * S.size];
+        r += h.w[k] * Vec3(s[0], s[1], s[2]);
+      }
+      worst = std::max(worst, (r - pointOf(mesh, p.points[v])).norm());
+    }
+    error[d] = worst;
+  }
+  return error;
+}
+
+/// The side samples of a path at level d (m = 2^d segments) fitted to the path by least squares,
+/// as fitInterior fits a chart's interior: the path's points and its edges' midpoints, placed
+/// by arc length on the chords between samples (weights a quarter and a half of the edge
+/// lengths), a membrane on the offsets of consecutive samples and the ends fixed. `at(q)` gives
+/// the interpolated position of sample q; returns the m + 1 fitted positions (empty: keep them).
+template <typename At>
+std::vector<Vec3> fitPath(const TriMesh& mesh, const int32_t* path, int64_t count, int32_t d,
+  const At& at)
+{
+  const int64_t m = int64_t(1) << d;
+  if (m < 2 || count < 2)
+  {
+    return {};
+  }
+  std::vector<double> arc(count, 0.0);
+  for (int64_t i = 1; i < count; ++i)
+  {
+    arc[i] = arc[i - 1] + (pointOf(mesh, path[i]) - pointOf(mesh, path[i - 1])).norm();
+  }
+  const double length = arc.back();
+  if (!(length > 0.0))
+  {
+    return {};
+  }
+  const int32_t nu = static_cast<int32_t>(m - 1);
+  std::vector<Vec3> x(m + 1);
+  for (int64_t q = 0; q <= m; ++q)
+  {
+    x[q] = at(q);
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(nu, 3);
+  auto addData = [&](double s, const Vec3& P, double w)
+  {
+    const double t = std::clamp(s / length, 0.0, 1.0) * m;
+    const int64_t q = std::clamp<int64_t>(static_cast<int64_t>(std::floor(t)), 0, m - 1);
+    const int32_t id[2] = { q == 0 ? -1 : static_cast<int32_t>(q - 1),
+      q + 1 == m ? -1 : static_cast<int32_t>(q) };
+    const double b[2] = { 1.0 - (t - q), t - q };
+    const Vec3 xs[2] = { x[q], x[q + 1] };
+    addFitData(id, b, xs, P, w, entries, rhs);
+  };
+  for (int64_t i = 0; i + 1 < count; ++i)
+  {
+    const double l = arc[i + 1] - arc[i];
+    const Vec3 a = pointOf(mesh, path[i]), b = pointOf(mesh, path[i + 1]);
+    addData(arc[i], a, 0.25 * l);
+    addData(arc[i + 1], b, 0.25 * l);
+    addData(0.5 * (arc[i] + arc[i + 1]), 0.5 * (a + b), 0.5 * l);
+  }
+  const double mean = length / nu;
+  const double mu = kFitMembrane * mean;
+  for (int32_t a = 0; a < nu; ++a)
+  {
+    entries.emplace_back(a, a, kFitDefinite * mean + 2.0 * mu);
+    if (a + 1 < nu)
+    {
+      entries.emplace_back(a, a + 1, -mu);
+      entries.emplace_back(a + 1, a, -mu);
+    }
+  }
+  const Eigen::MatrixX3d delta = solveOffsets(nu, entries, rhs);
+  if (delta.rows() == 0)
+  {
+    return {};
+  }
+  for (int32_t a = 0; a < nu; ++a)
+  {
+    x[a + 1] += delta.row(a).transpose();
+  }
+  return x;
+}
+
+/// Moves the interior samples of level d of a chart (grid g at stride g.n / 2^d) off the
+/// surface to fit it in the least-squares sense, instead of interpolating it: sample points
+/// on a curved surface make every grid triangle a chord that lies to one side of it, and an
+/// offset of about a third of that sagitta halves the largest deviation on both sides. The
+/// offsets delta minimize
+///   sum over data points q of w_q |sum_k b_qk (X0_k + delta_k) - P_q|^2
+///   + mu sum over grid edges (a, b) of |delta_a - delta_b|^2 + lambda sum_a |delta_a|^2,
+/// the data being the patch's points and its triangles' centroids at their (u, v) (weights a
+/// sixth and a half of the areas of their triangles), b_qk the barycentrics of q's grid
+/// triangle, X0 the interpolated samples. Side and corner samples (shared with the neighbours)
+/// keep delta = 0; mu (a membrane on the offsets, relative to the mean data weight per sample)
+/// keeps the offsets smooth where a sample has little data, lambda keeps the system definite.
+/// Writes back the positions only.
+void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid& g,
+  const SampleLayout& S, int32_t d)
+{
+  const int64_t nd = int64_t(1) << d;
+  const int64_t stride = g.n / nd;
+  std::vector<int32_t> unknown(static_cast<size_t>(gridSamples(d)), -1);
+  int32_t nu = 0;
+  for (int64_t j = 1; j < nd; ++j)
+  {
+    for (int64_t i = 1; i + j < nd; ++i)
+    {
+      unknown[gridIndex(nd, i, j)] = nu++;
+    }
+  }
+  if (nu == 0)
+  {
+    return;
+  }
+  auto sample = [&](int64_t i, int64_t j)
+  { return &g.values[gridIndex(g.n, i * stride, j * stride) * S.size]; };
+
+  // Data: points and centroids with their weights.
+  const int64_t nt = static_cast<int64_t>(p.triangles.size() / 3);
+  std::vector<double> pointWeight(p.points.size(), 0.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(nu, 3);
+  double total = 0.0;
+  auto addData = [&](double u, double v, const Vec3& P, double w)
+  {
+    if (!(w > 0.0))
+    {
+      return;
+    }
+    total += w;
+    const GridHit h = gridHit(u, v, nd);
+    int32_t id[3];
+    Vec3 x[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      id[k] = unknown[gridIndex(nd, h.i[k], h.j[k])];
+      const float* q = sample(h.i[k], h.j[k]);
+      x[k] = Vec3(q[0], q[1], q[2]);
+    }
+    addFitData(id, h.w, x, P, w, entries, rhs);
+  };
+  for (int64_t t = 0; t < nt; ++t)
+  {
+    const int32_t* c = &p.triangles[3 * t];
+    const Vec3 a = pointOf(mesh, p.points[c[0]]), b = pointOf(mesh, p.points[c[1]]),
+               e = pointOf(mesh, p.points[c[2]]);
+    const double area = 0.5 * (b - a).cross(e - a).norm();
+    for (int k = 0; k < 3; ++k)
+    {
+      pointWeight[c[k]] += area / 6.0;
+    }
+    addData((p.uv[2 * c[0]] + p.uv[2 * c[1]] + p.uv[2 * c[2]]) / 3.0,
+      (p.uv[2 * c[0] + 1] + p.uv[2 * c[1] + 1] + p.uv[2 * c[2] + 1]) / 3.0, (a + b + e) / 3.0,
+      area / 2.0);
+  }
+  for (size_t v = 0; v < p.points.size(); ++v)
+  {
+    addData(p.uv[2 * v], p.uv[2 * v + 1], pointOf(mesh, p.points[v]), pointWeight[v]);
+  }
+  if (!(total > 0.0))
+  {
+    return;
+  }
+  // The membrane over the grid edges (each once: right, up and up-left neighbours) and the
+  // definiteness term; offsets of side samples are 0.
+  const double mean = total / nu;
+  const double mu = kFitMembrane * mean;
+  for (int64_t j = 0; j <= nd; ++j)
+  {
+    for (int64_t i = 0; i + j <= nd; ++i)
+    {
+      const int32_t a = unknown[gridIndex(nd, i, j)];
+      if (a >= 0)
+      {
+        entries.emplace_back(a, a, kFitDefinite * mean);
+      }
+      const int64_t ni[3] = { i + 1, i, i - 1 }, nj[3] = { j, j + 1, j + 1 };
+      for (int k = 0; k < 3; ++k)
+      {
+        if (ni[k] < 0 || ni[k] + nj[k] > nd)
+        {
+          continue;
+        }
+        const int32_t b = unknown[gridIndex(nd, ni[k], nj[k])];
+        if (a >= 0)
+        {
+          entries.emplace_back(a, a, mu);
+        }
+        if (b >= 0)
+        {
+          entries.emplace_back(b, b, mu);
+        }
+        if (a >= 0 && b >= 0)
+        {
+          entries.emplace_back(a, b, -mu);
+          entries.emplace_back(b, a, -mu);
+        }
+      }
+    }
+  }
+  const Eigen::MatrixX3d delta = solveOffsets(nu, entries, rhs);
+  if (delta.rows() == 0)
+  {
+    return; // keep the interpolated samples
+  }
+  for (int64_t j = 1; j < nd; ++j)
+  {
+    for (int64_t i = 1; i + j < nd; ++i)
+    {
+      float* s = sample(i, j);
+      const int32_t a = unknown[gridIndex(nd, i, j)];
+      for (int x = 0; x < 3; ++x)
+      {
+        s[x] = static_cast<float>(s[x] + delta(a, x));
+      }
+    }
+  }
+}
+
 /// One path sampled by arc length from its lower base vertex to its higher one.
 struct PathSamples
 {
@@ -999,7 +1320,8 @@ std::array<double, 12> storableBox(const std::array<double, 12>& corners)
 /// chart whatever its size (measured), tens of seconds for the thousand charts a detailed mesh
 /// can have, while the box only feeds the projected-area LOD estimate of eq. 6, for which
 /// principal axes are close enough.
-Box orientedBox(const std::vector<Vec3>& points)
+/// With `also`: points the box must hold as well, which do not set its axes (fitted samples).
+Box orientedBox(const std::vector<Vec3>& points, const std::vector<Vec3>* also = nullptr)
 {
   Vec3 mean = Vec3::Zero();
   for (const Vec3& q : points)
@@ -1018,7 +1340,13 @@ Box orientedBox(const std::vector<Vec3>& points)
   {
     R = Eigen::Matrix3d::Identity();
   }
-  return boxInFrame(points, R);
+  if (!also)
+  {
+    return boxInFrame(points, R);
+  }
+  std::vector<Vec3> all(points);
+  all.insert(all.end(), also->begin(), also->end());
+  return boxInFrame(all, R);
 }
 
 /// d_max per chart: the largest alpha with floor(log4(alpha A_c)) clamped to [minLevel,
@@ -1739,54 +2067,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
       }
 
-      // levelError[d]: distance from each patch point to the level-d grid surface at the same
-      // (u, v), the piecewise-linear reconstruction in parameter space.
-      ch.levelError.assign(dmax + 1, 0.0);
-      for (int32_t d = 0; d <= dmax; ++d)
-      {
-        const int64_t nd = int64_t(1) << d;
-        const int64_t stride = n / nd;
-        auto grid = [&](int64_t i, int64_t jj)
-        {
-          const float* s = &g.values[gridIndex(n, i * stride, jj * stride) * S.size];
-          return Vec3(s[0], s[1], s[2]);
-        };
-        double worst = 0.0;
-        for (int32_t v = 0; v < np; ++v)
-        {
-          const double x = std::clamp(p.uv[2 * v], 0.0, 1.0) * nd;
-          const double y = std::clamp(p.uv[2 * v + 1], 0.0, 1.0) * nd;
-          int64_t i = std::clamp<int64_t>(static_cast<int64_t>(std::floor(x)), 0, nd - 1);
-          int64_t jj = std::clamp<int64_t>(static_cast<int64_t>(std::floor(y)), 0, nd - 1 - i);
-          double fx = x - i, fy = y - jj;
-          Vec3 r;
-          if (fx + fy <= 1.0 || i + jj + 1 >= nd)
-          {
-            // Lower triangle (i, j), (i + 1, j), (i, j + 1); clamped onto it at the hypotenuse.
-            const double s = fx + fy;
-            if (s > 1.0)
-            {
-              fx /= s;
-              fy /= s;
-            }
-            r = (1.0 - fx - fy) * grid(i, jj) + fx * grid(i + 1, jj) + fy * grid(i, jj + 1);
-          }
-          else
-          {
-            // Upper triangle (i + 1, j + 1), (i, j + 1), (i + 1, j).
-            r = (fx + fy - 1.0) * grid(i + 1, jj + 1) + (1.0 - fx) * grid(i, jj + 1) +
-              (1.0 - fy) * grid(i + 1, jj);
-          }
-          worst = std::max(worst, (r - pointOf(mesh, p.points[v])).norm());
-        }
-        ch.levelError[d] = worst;
-      }
-      std::vector<Vec3> pts(np);
-      for (int32_t v = 0; v < np; ++v)
-      {
-        pts[v] = pointOf(mesh, p.points[v]);
-      }
-      ch.box = storableBox(orientedBox(pts).corners);
+      ch.levelError = chartLevelErrors(mesh, p, g, S, dmax);
     },
     progress.sub(0.5, 0.85), blockSteps(nc));
 
@@ -1809,15 +2090,101 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     }
     level = allocateByError(errors, options, budget, 1e-6 * (diagonal + extent));
   }
-  for (int32_t c = 0; c < nc; ++c)
+  if (options.fitSamples)
   {
-    atlas.charts[c].maxLevel = level[c];
-    atlas.charts[c].levelError.resize(static_cast<size_t>(level[c]) + 1);
-    for (double& e : atlas.charts[c].levelError)
+    // Sides first, at the finer level of their two charts, written into both (the coarser one
+    // takes every other sample); then the interiors, with their sides fixed.
+    auto sideSample = [&](int32_t c, int k, int64_t t) -> float*
     {
-      e = storageRounded(e);
-    }
+      const int64_t n = int64_t(1) << level[c];
+      const int64_t stride = grids[c].n / n;
+      const int64_t i = k == 0 ? t : (k == 1 ? n - t : 0);
+      const int64_t j = k == 0 ? 0 : (k == 1 ? t : n - t);
+      return &grids[c].values[gridIndex(grids[c].n, i * stride, j * stride) * S.size];
+    };
+    parallel_for(
+      ne,
+      [&](int64_t e)
+      {
+        if (L.edgeFeature[e])
+        {
+          return; // a feature curve stays sampled on the curve, so the crease stays in place
+        }
+        const int32_t d = std::max(level[L.edgeChart[2 * e]], level[L.edgeChart[2 * e + 1]]);
+        // Sample q of the path (lower base vertex first) at level d.
+        const PathSamples& ps = paths[e];
+        auto at = [&](int64_t q)
+        {
+          const float* v = &ps.values[(q << (ps.level - d)) * S.size];
+          return Vec3(v[0], v[1], v[2]);
+        };
+        const int64_t p0 = patches.pathOffsets[e], p1 = patches.pathOffsets[e + 1];
+        const std::vector<Vec3> fitted =
+          fitPath(mesh, &patches.pathPoints[p0], p1 - p0, d, at);
+        if (fitted.empty())
+        {
+          return;
+        }
+        for (int slot = 0; slot < 2; ++slot)
+        {
+          const int32_t c = L.edgeChart[2 * e + slot], k = L.edgeSide[2 * e + slot];
+          const bool forward = base.baseTriangles[3 * c + k] == patches.baseEdges[2 * e];
+          const int64_t n = int64_t(1) << level[c];
+          for (int64_t t = 1; t < n; ++t)
+          {
+            const int64_t q = (forward ? t : n - t) << (d - level[c]);
+            float* out = sideSample(c, k, t);
+            for (int x = 0; x < 3; ++x)
+            {
+              out[x] = static_cast<float>(fitted[q][x]);
+            }
+          }
+        }
+      },
+      progress.sub(0.85, 0.87), blockSteps(ne));
   }
+  parallel_for(
+    nc,
+    [&](int64_t c)
+    {
+      AtlasChart& ch = atlas.charts[c];
+      ch.maxLevel = level[c];
+      std::vector<Vec3> pts(param[c].points.size());
+      for (size_t v = 0; v < pts.size(); ++v)
+      {
+        pts[v] = pointOf(mesh, param[c].points[v]);
+      }
+      if (options.fitSamples)
+      {
+        fitInterior(mesh, param[c], grids[c], S, level[c]);
+        ch.levelError = chartLevelErrors(mesh, param[c], grids[c], S, level[c]);
+        // The box holds the fitted samples too (they leave the surface), with the axes of the
+        // patch's points.
+        const int64_t n = int64_t(1) << level[c];
+        const int64_t stride = grids[c].n / n;
+        std::vector<Vec3> samples;
+        for (int64_t j = 0; j <= n; ++j)
+        {
+          for (int64_t i = 0; i + j <= n; ++i)
+          {
+            const float* q =
+              &grids[c].values[gridIndex(grids[c].n, i * stride, j * stride) * S.size];
+            samples.emplace_back(q[0], q[1], q[2]);
+          }
+        }
+        ch.box = storableBox(orientedBox(pts, &samples).corners);
+      }
+      else
+      {
+        ch.box = storableBox(orientedBox(pts).corners);
+      }
+      ch.levelError.resize(static_cast<size_t>(level[c]) + 1);
+      for (double& e : ch.levelError)
+      {
+        e = storageRounded(e);
+      }
+    },
+    progress.sub(0.87, 0.9), blockSteps(nc));
 
   // 6. Packing (paper 5.2): charts sorted by d_max, each paired with the next closest one; one
   // image per mip step, rectangles placed by a shelf packer.
@@ -1902,7 +2269,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
       }
     },
-    progress.sub(0.85, 1.0), blockSteps(nc));
+    progress.sub(0.9, 1.0), blockSteps(nc));
   progress.report(1.0);
   return atlas;
 }
