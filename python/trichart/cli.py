@@ -108,6 +108,8 @@ def cmd_build(args):
                                               for name, value in result["seconds"].items()))
     print(f"  atlas: {size / 1e6:.2f} MB, {size / surface.GetNumberOfCells():.1f} bytes per "
           f"input triangle")
+    if result["retried"]:
+        print(f"  note: {result['retried']}")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():

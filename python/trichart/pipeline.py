@@ -258,7 +258,7 @@ def write_vtp(mesh, path):
 
 def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
           cluster_options=None, feature_options=None, base_options=None,
-          geometry_options=None, prepare_options=None):
+          geometry_options=None, prepare_options=None, retry_slivers=True):
     """The static pipeline: read, prepare, curvature, spectral clusters, feature refinement,
     base complex with MAPS, path tracing, geometry images; writes the atlas to `atlas_path`.
 
@@ -267,6 +267,11 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     parameterized, patches, paths, and the rebuilt mesh at the finest level as rebuilt), and,
     with image=True, pictures of curvature, features and the base complex. Returns a dict with
     every output, the written paths, the preparation report and the seconds per stage.
+
+    With retry_slivers (the default), when the paths cannot be traced and the preparation did
+    not remove slivers, it is run again with remove_slivers=True and the stages after it too:
+    slivers are what makes the parameterization too thin to trace on scans and CAD meshes.
+    The result's "retried" then says so (None otherwise).
     """
     import time
 
@@ -279,17 +284,38 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
         return value
 
     mesh = timed("read", read_mesh, path, progress)
-    clean, report = timed("prepare", prepare, mesh, progress=progress,
-                          **(prepare_options or {}))
-    surface, crest = timed("curvature", curvature, clean, progress=progress,
-                           **(curvature_options or {}))
-    clustered, boundaries = timed("clusters", cluster, surface, progress=progress,
-                                  **(cluster_options or {}))
-    features, lines, corners = timed("features", refine_features, clustered, progress=progress,
-                                     **(feature_options or {}))
-    base, parameterized = timed("base", base_complex, features, progress=progress,
-                                **(base_options or {}))
-    patches, paths = timed("paths", trace_paths, parameterized, progress=progress)
+
+    def front(options):
+        clean, report = timed("prepare", prepare, mesh, progress=progress, **options)
+        surface, crest = timed("curvature", curvature, clean, progress=progress,
+                               **(curvature_options or {}))
+        clustered, boundaries = timed("clusters", cluster, surface, progress=progress,
+                                      **(cluster_options or {}))
+        features, lines, corners = timed("features", refine_features, clustered,
+                                         progress=progress, **(feature_options or {}))
+        base, parameterized = timed("base", base_complex, features, progress=progress,
+                                    **(base_options or {}))
+        patches, paths = timed("paths", trace_paths, parameterized, progress=progress)
+        return (clean, report, surface, crest, clustered, boundaries, features, lines, corners,
+                base, parameterized, patches, paths)
+
+    options = dict(prepare_options or {})
+    retried = None
+    try:
+        stages_out = front(options)
+    except TriChartError as error:
+        if not retry_slivers or options.get("remove_slivers") or \
+                not str(error).startswith("paths:"):
+            raise
+        message = str(error)
+        where = message.find("tracePaths: ")
+        reason = message[where + len("tracePaths: "):] if where >= 0 else message
+        retried = (f"the paths could not be traced ({reason.split(';')[0]}); built again "
+                   "with the slivers removed (--remove-slivers)")
+        options["remove_slivers"] = True
+        stages_out = front(options)
+    (clean, report, surface, crest, clustered, boundaries, features, lines, corners, base,
+     parameterized, patches, paths) = stages_out
     atlas = timed("images", geometry_images, patches, progress=progress,
                   **(geometry_options or {}))
     os.makedirs(os.path.dirname(os.path.abspath(str(atlas_path))), exist_ok=True)
@@ -313,4 +339,4 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
             files["base_complex_image"] = render_base_complex(
                 base, parameterized, os.path.join(stages, "base_complex.png"))
     return dict(outputs, atlas=atlas, files=files, report=report, mesh=clean, surface=surface,
-                seconds=seconds)
+                seconds=seconds, retried=retried)

@@ -122,3 +122,19 @@ def test_prepare_reports_and_splits(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "non-manifold" in r.stdout
     assert (tmp_path / "fins.vtp").exists()
+
+
+def test_build_removes_slivers_and_retries_when_the_paths_cannot_be_traced(shared_data,
+                                                                            tmp_path):
+    # couplingdown's CAD tessellation has needles (a side 13 times the shortest) that the base
+    # complex keeps and the paths cannot be cut through; the build removes them and goes on.
+    mesh = shared_data / "cad" / "couplingdown.off"
+    r = run("build", mesh, "-o", tmp_path / "c.exr", "-q")
+    assert r.returncode == 0, r.stderr
+    assert "note: the paths could not be traced (input triangle" in r.stdout, r.stdout
+    assert "found 180 slivers" in r.stdout
+    assert (tmp_path / "c.exr").stat().st_size > 0
+    # Asked for up front, there is nothing to retry.
+    r = run("build", mesh, "-o", tmp_path / "d.exr", "-q", "--remove-slivers")
+    assert r.returncode == 0, r.stderr
+    assert "note:" not in r.stdout and "found 180 slivers" in r.stdout
