@@ -48,3 +48,21 @@ def test_an_open_mesh_is_refused_with_a_reason(tmp_path):
     mesh, _ = trichart.prepare(trichart.read_mesh(tmp_path / "open.off"))
     with pytest.raises(TriChartError, match="base complex"):
         trichart.base_complex(mesh)
+
+
+def test_max_error_stops_the_simplification_before_the_target(testing_data):
+    # Down to 20 faces fandisk's features stop at 68 (MaxError 0: the count alone decides).
+    # The default bound (1e-4 of the squared diagonal) stops at 198, a looser one in between;
+    # never above one face per 32 input points (6475 / 32 = 202).
+    features = features_of(testing_data / "meshes" / "fandisk.off")
+    counts = {}
+    for bound in (0.0, 1e-3, None):
+        options = {} if bound is None else {"max_error": bound}
+        base, _ = trichart.base_complex(features, target_faces=20, **options)
+        counts[bound] = base.GetNumberOfPolys()
+    print(counts)
+    assert counts[0.0] < counts[1e-3] < counts[None] <= features.GetNumberOfPoints() // 32
+    f = trichart.pipeline.TriChartBaseComplex.tcBaseComplex()
+    assert f.GetMaxError() == 1e-4
+    f.SetMaxError(-1.0)
+    assert f.GetMaxError() == 0.0

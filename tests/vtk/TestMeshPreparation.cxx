@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // tcMeshPreparation at the VTK level: polygons become triangles, flags and provenance arrays
 // are written, input arrays pass through, the report lands in field data, non-manifold
-// splitting yields a manifold, and bad input is an error rather than a crash.
+// splitting yields a manifold, and bad input is an error rather than a crash. Then a UV sphere
+// without its polar caps, open (left) and with the holes filled by faired patches and its
+// slivers removed (right, the new triangles in their own colour), compared with its baseline.
 #include "tcMeshPreparation.h"
 #include "tcTestUtilities.h"
 
@@ -17,7 +19,13 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkIdList.h>
+#include <vtkIntArray.h>
 #include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkCamera.h>
+#include <vtkRenderer.h>
+#include <vtkSphereSource.h>
 
 #include <cmath>
 #include <limits>
@@ -164,5 +172,75 @@ int TestMeshPreparation(int argc, char* argv[])
     TC_CHECK(check, errors == 1);
     TC_CHECK(check, prep->GetOutput()->GetNumberOfPolys() == 0);
   }
+
+  // Holes and slivers: a UV sphere (its pole triangles are needles) without the cells of
+  // |z| > 0.2 (of radius 0.5).
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(64);
+  source->SetPhiResolution(24);
+  source->Update();
+  vtkPolyData* sphere = source->GetOutput();
+  vtkNew<vtkPolyData> open;
+  open->SetPoints(sphere->GetPoints());
+  open->AllocateExact(sphere->GetNumberOfCells(), 3 * sphere->GetNumberOfCells());
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < sphere->GetNumberOfCells(); ++c)
+  {
+    sphere->GetCellPoints(c, ids);
+    double z = 0.0;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      z += sphere->GetPoint(ids->GetId(k))[2] / ids->GetNumberOfIds();
+    }
+    if (std::abs(z) < 0.2)
+    {
+      open->InsertNextCell(sphere->GetCellType(c), ids);
+    }
+  }
+  vtkNew<tcMeshPreparation> plain;
+  plain->SetInputData(open);
+  plain->Update();
+  vtkNew<tcMeshPreparation> repaired;
+  repaired->SetInputData(open);
+  repaired->FillHolesOn();
+  repaired->RemoveSliversOn();
+  repaired->Update();
+  vtkPolyData* closed = repaired->GetOutput();
+  TC_CHECK(check, tctest::OpenOrNonManifoldEdges(plain->GetOutput()) > 0);
+  TC_CHECK(check, tctest::OpenOrNonManifoldEdges(closed) == 0);
+  TC_CHECK(check, tctest::Euler(closed) == 2);
+  const std::string report = repaired->GetReport();
+  TC_CHECK(check, report.find("filled 2 holes") != std::string::npos);
+  // Colour: 1 for a hole-filling triangle (InputCellId -1), 0 for a kept one.
+  vtkDataArray* from = closed->GetCellData()->GetArray(tc::kInputCellId);
+  vtkNew<vtkIntArray> added;
+  added->SetName("Added");
+  vtkIdType newCells = 0;
+  for (vtkIdType c = 0; c < closed->GetNumberOfCells(); ++c)
+  {
+    const int isNew = from->GetTuple1(c) < 0 ? 1 : 0;
+    added->InsertNextValue(isNew);
+    newCells += isNew;
+  }
+  closed->GetCellData()->AddArray(added);
+  TC_CHECK(check, newCells > 0);
+  vtkNew<vtkIntArray> none;
+  none->SetName("Added");
+  none->SetNumberOfTuples(plain->GetOutput()->GetNumberOfCells());
+  none->FillValue(0);
+  plain->GetOutput()->GetCellData()->AddArray(none);
+  const double left[4] = { 0.0, 0.0, 0.5, 1.0 };
+  const double right[4] = { 0.5, 0.0, 1.0, 1.0 };
+  vtkSmartPointer<vtkRenderer> a =
+    tctest::LabelRenderer(plain->GetOutput(), "Added", nullptr, nullptr, left);
+  vtkSmartPointer<vtkRenderer> b = tctest::LabelRenderer(closed, "Added", nullptr, nullptr, right);
+  for (vtkRenderer* r : { a.Get(), b.Get() })
+  {
+    r->ResetCamera();
+    r->GetActiveCamera()->Elevation(35.0);
+    r->ResetCameraClippingRange();
+  }
+  vtkSmartPointer<vtkRenderWindow> window = tctest::SideBySide(a, b);
+  TC_CHECK(check, tctest::MatchesBaseline(argc, argv, window));
   return check.failures == 0 ? 0 : 1;
 }
