@@ -999,14 +999,23 @@ TEST(Preparation, HolesAreClosedByFairedPatchesWhenAsked)
   EXPECT_TRUE(contains(capped.report.text(), "left 2 holes open"));
 }
 
-TEST(Preparation, HolesOfANonManifoldMeshAreRefusedUntilSplit)
+namespace
 {
-  // The sphere with two holes and a fin on one of its edges.
-  tc::PolygonSoup soup = sphereWithTwoHoles();
+/// A triangle on the first edge of the first polygon, out to (3, 3, 3): a non-manifold edge.
+void addFin(tc::PolygonSoup& soup)
+{
   const int64_t a = soup.connectivity[0], b = soup.connectivity[1];
   soup.points.insert(soup.points.end(), { 3.0, 3.0, 3.0 });
   soup.connectivity.insert(soup.connectivity.end(), { a, b, soup.numPoints() - 1 });
   soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+}
+} // namespace
+
+TEST(Preparation, HolesOfANonManifoldMeshAreRefusedUntilSplit)
+{
+  // The sphere with two holes and a fin on one of its edges.
+  tc::PolygonSoup soup = sphereWithTwoHoles();
+  addFin(soup);
   tc::PreparationOptions options;
   options.fillHoles = true;
   const std::string error = preparationError(soup, options);
@@ -1170,10 +1179,7 @@ TEST(Preparation, SliversAreCollapsedAndFlippedWhenAsked)
 TEST(Preparation, SliversOfANonManifoldMeshAreRefusedUntilSplit)
 {
   tc::PolygonSoup soup = sphereWithSlivers();
-  const int64_t a = soup.connectivity[0], b = soup.connectivity[1];
-  soup.points.insert(soup.points.end(), { 3.0, 3.0, 3.0 });
-  soup.connectivity.insert(soup.connectivity.end(), { a, b, soup.numPoints() - 1 });
-  soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  addFin(soup);
   tc::PreparationOptions options;
   options.removeSlivers = true;
   const std::string error = preparationError(soup, options);

@@ -85,17 +85,23 @@ def test_plugin_path_points_at_the_plugin():
     assert path.endswith("TriChart.so")
 
 
+def _uv_sphere(meridians, parallels):
+    """vtkSphereSource's UV sphere of radius 0.5."""
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+
+    source = vtkSphereSource()
+    source.SetThetaResolution(meridians)
+    source.SetPhiResolution(parallels)
+    source.Update()
+    return source.GetOutput()
+
+
 def test_fill_holes_closes_an_open_sphere():
     # A UV sphere without its polar caps (z > 0.4 and z < -0.4): two holes.
     from vtkmodules.vtkCommonDataModel import vtkPolyData
-    from vtkmodules.vtkFiltersSources import vtkSphereSource
     from vtkmodules.vtkCommonCore import vtkIdList
 
-    source = vtkSphereSource()
-    source.SetThetaResolution(48)
-    source.SetPhiResolution(32)
-    source.Update()
-    sphere = source.GetOutput()
+    sphere = _uv_sphere(48, 32)
     kept = vtkPolyData()
     kept.SetPoints(sphere.GetPoints())
     kept.Allocate()
@@ -147,13 +153,7 @@ def _slivers(mesh, max_angle=170.0, max_ratio=10.0):
 def test_remove_slivers_collapses_the_needles_of_a_uv_sphere():
     # 96 meridians and 32 parallels: the triangles next to the poles have sides 15 times
     # their shortest.
-    from vtkmodules.vtkFiltersSources import vtkSphereSource
-
-    source = vtkSphereSource()
-    source.SetThetaResolution(96)
-    source.SetPhiResolution(32)
-    source.Update()
-    sphere = source.GetOutput()
+    sphere = _uv_sphere(96, 32)
     plain, report = trichart.prepare(sphere)
     needles = _slivers(plain)
     assert needles > 100 and "sliver" not in report
