@@ -73,12 +73,12 @@ public:
   vtkBooleanMacro(RemoveSlivers, bool);
 
   /// With RemoveSlivers: a triangle with a larger angle (degrees) is a cap (default 170).
-  vtkSetClampMacro(SliverAngle, double, 90.0, 180.0);
+  vtkSetClampMacro(SliverAngle, double, 120.0, 180.0);
   vtkGetMacro(SliverAngle, double);
 
   /// With RemoveSlivers: a triangle whose longest side exceeds its shortest by a larger ratio is
   /// a needle (default 10).
-  vtkSetClampMacro(SliverEdgeRatio, double, 1.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(SliverEdgeRatio, double, 3.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SliverEdgeRatio, double);
   ///@}
 

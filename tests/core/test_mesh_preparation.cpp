@@ -1174,6 +1174,16 @@ TEST(Preparation, SliversAreCollapsedAndFlippedWhenAsked)
   const tc::PreparationResult again = tc::prepareMesh(soup, options);
   EXPECT_EQ(again.mesh.points, r.mesh.points);
   EXPECT_EQ(again.mesh.triangles, r.mesh.triangles);
+
+  // Thresholds that would take ordinary triangles for slivers are refused.
+  for (const auto& [angle, ratio] : { std::pair<double, double>{ 90.0, 10.0 }, { 170.0, 1.5 },
+         { 181.0, 10.0 }, { std::nan(""), 10.0 } })
+  {
+    tc::PreparationOptions bad = options;
+    bad.sliverAngle = angle;
+    bad.sliverEdgeRatio = ratio;
+    EXPECT_TRUE(contains(preparationError(soup, bad), "sliverEdgeRatio at least 3")) << angle;
+  }
 }
 
 TEST(Preparation, SliversOfANonManifoldMeshAreRefusedUntilSplit)

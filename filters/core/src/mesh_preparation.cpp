@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -1023,6 +1024,22 @@ PreparationResult prepareMesh(
 
   // 1. Validate: every later step may assume ids in range and finite coordinates.
   validate(soup);
+  if (options.removeSlivers &&
+    !(options.sliverAngle >= kMinSliverAngle && options.sliverAngle <= 180.0 &&
+      options.sliverEdgeRatio >= kMinSliverEdgeRatio))
+  {
+    // Lower thresholds would count ordinary triangles as slivers and collapse the mesh away
+    // (a ratio of 1.01 turns the bundled bunny into a tetrahedron).
+    auto g = [](double x)
+    {
+      char text[32];
+      std::snprintf(text, sizeof(text), "%g", x);
+      return std::string(text);
+    };
+    throw InputError("mesh preparation: sliverAngle must be " + g(kMinSliverAngle) +
+      " .. 180 degrees and sliverEdgeRatio at least " + g(kMinSliverEdgeRatio) + " (got " +
+      g(options.sliverAngle) + " and " + g(options.sliverEdgeRatio) + ")");
+  }
   const int64_t nv = soup.numPoints();
   const int64_t np = soup.numPolygons();
   const double* points = soup.points.data();

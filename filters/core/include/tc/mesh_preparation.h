@@ -40,9 +40,13 @@ struct PreparationOptions
   /// ones it removes) and the paths cannot be traced through its near-flat stars. No point
   /// moves; collapsed points are dropped. Needs a manifold mesh (splitNonManifold).
   bool removeSlivers = false;
-  double sliverAngle = 170.0;    ///< degrees, 90 .. 180: a larger angle makes a cap
-  double sliverEdgeRatio = 10.0; ///< > 1: a larger ratio of longest to shortest side, a needle
+  double sliverAngle = 170.0;    ///< degrees, 120 .. 180: a larger angle makes a cap
+  double sliverEdgeRatio = 10.0; ///< >= 3: a larger ratio of longest to shortest side, a needle
 };
+
+/// Smallest sliverAngle and sliverEdgeRatio: below them ordinary triangles count as slivers.
+constexpr double kMinSliverAngle = 120.0;
+constexpr double kMinSliverEdgeRatio = 3.0;
 
 /// What tcMeshPreparation found and changed. Counts of removed things refer to the stage in
 /// which they were removed: inputPoints = mergedPoints + unusedPoints + (outputPoints -
