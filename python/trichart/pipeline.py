@@ -35,13 +35,20 @@ def run(algorithm, label="", progress=None):
             obj.AbortExecuteOn()
             errors.append("interrupted")
 
+    def on_executive_error(_obj, _event):
+        pass  # "Algorithm ... returned failure for request" and a dump of the request: the
+        # algorithm's own message (above) says what went wrong
+
     error_tag = algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
     progress_tag = algorithm.AddObserver(vtkCommand.ProgressEvent, on_progress)
+    executive = algorithm.GetExecutive()
+    executive_tag = executive.AddObserver(vtkCommand.ErrorEvent, on_executive_error)
     try:
         algorithm.Update()
     finally:
         algorithm.RemoveObserver(error_tag)
         algorithm.RemoveObserver(progress_tag)
+        executive.RemoveObserver(executive_tag)
     if algorithm.GetAbortExecute():
         algorithm.AbortExecuteOff()
         algorithm.Modified()
