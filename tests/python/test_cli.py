@@ -76,7 +76,8 @@ def test_build_shows_progress(testing_data, tmp_path):
 @pytest.mark.parametrize("content,message", [
     (None, "does not exist"),
     ("", "bad.off"),
-    ("OFF\n3 1 0\n0 0 0\n1 0 0\n", "line"),
+    # The file and line where it went wrong.
+    ("OFF\n3 1 0\n0 0 0\n1 0 0\n", "bad.off:4: the file ends after 2 of 3 vertices"),
 ])
 def test_bad_files_fail_with_a_message_and_write_nothing(tmp_path, content, message):
     mesh = tmp_path / "bad.off"
