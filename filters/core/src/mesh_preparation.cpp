@@ -1291,6 +1291,14 @@ PreparationResult prepareMesh(
       "mesh preparation: cannot " + what + ": the mesh is not an oriented manifold: " + why);
   };
 
+  // After a repair changed the triangles: edges, components, orientation and boundary again.
+  auto relink = [&]()
+  {
+    edges = buildEdgeTable(tri);
+    orientComponents(options.orient, edges, result);
+    markBoundary(edges, numVertices, result);
+  };
+
   // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   int64_t nf = numKept;
   if (options.fillHoles)
@@ -1316,10 +1324,8 @@ PreparationResult prepareMesh(
       result.nonManifoldEdge.resize(nf, 0);
       if (filled.addedTriangles > 0)
       {
-        edges = buildEdgeTable(tri);
-        orientComponents(options.orient, edges, result);
+        relink();
       }
-      markBoundary(edges, numVertices, result);
     }
   }
   progress.report(0.9);
@@ -1354,9 +1360,7 @@ PreparationResult prepareMesh(
       keep(result.nonManifoldEdge, removed.keptTriangles);
       numVertices = static_cast<int32_t>(removed.keptPoints.size());
       nf = static_cast<int64_t>(removed.keptTriangles.size());
-      edges = buildEdgeTable(tri);
-      orientComponents(options.orient, edges, result);
-      markBoundary(edges, numVertices, result);
+      relink();
     }
   }
   report.outputPoints = numVertices;

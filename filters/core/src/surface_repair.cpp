@@ -46,6 +46,55 @@ bool toSurface(const TriMesh& mesh, Surface& surface)
   }
   return true;
 }
+
+/// The triangles removeSlivers looks for: a needle (longest side over shortest above
+/// maxEdgeRatio, or a side of no length) or a cap (largest angle above maxAngleDegrees),
+/// with both thresholds turned once into what the test compares.
+struct SliverTest
+{
+  double capCosine;  ///< cosine of the largest angle a triangle may have
+  double ratio2;     ///< squared largest ratio of longest to shortest side
+  SliverTest(double maxAngleDegrees, double maxEdgeRatio)
+    : capCosine(std::cos(maxAngleDegrees * 3.14159265358979323846 / 180.0))
+    , ratio2(maxEdgeRatio * maxEdgeRatio)
+  {
+  }
+  bool operator()(const double* a, const double* b, const double* c) const
+  {
+    const double* p[3] = { a, b, c };
+    double len2[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      const double* u = p[(i + 1) % 3];
+      const double* w = p[(i + 2) % 3];
+      len2[i] = (u[0] - w[0]) * (u[0] - w[0]) + (u[1] - w[1]) * (u[1] - w[1]) +
+        (u[2] - w[2]) * (u[2] - w[2]); // side opposite corner i
+    }
+    const int k = static_cast<int>(std::max_element(len2, len2 + 3) - len2);
+    const double longest = len2[k];
+    const double s1 = len2[(k + 1) % 3], s2 = len2[(k + 2) % 3];
+    const double shortest = std::min(s1, s2);
+    if (!(shortest > 0.0) || longest > ratio2 * shortest)
+    {
+      return true;
+    }
+    // The largest angle is opposite the longest side.
+    return (s1 + s2 - longest) / (2.0 * std::sqrt(s1 * s2)) < capCosine;
+  }
+  int64_t count(const TriMesh& m) const
+  {
+    int64_t n = 0;
+    for (int64_t f = 0; f < m.numTriangles(); ++f)
+    {
+      const int32_t* t = &m.triangles[3 * f];
+      n += (*this)(&m.points[3 * static_cast<size_t>(t[0])],
+             &m.points[3 * static_cast<size_t>(t[1])], &m.points[3 * static_cast<size_t>(t[2])])
+        ? 1
+        : 0;
+    }
+    return n;
+  }
+};
 } // namespace
 
 HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress)
@@ -129,62 +178,15 @@ HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress)
   return out;
 }
 
-bool isSliver(const double* a, const double* b, const double* c, double maxAngleDegrees,
-  double maxEdgeRatio)
-{
-  const double* p[3] = { a, b, c };
-  double len2[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    const double* u = p[(i + 1) % 3];
-    const double* w = p[(i + 2) % 3];
-    len2[i] = (u[0] - w[0]) * (u[0] - w[0]) + (u[1] - w[1]) * (u[1] - w[1]) +
-      (u[2] - w[2]) * (u[2] - w[2]); // side opposite corner i
-  }
-  const double shortest = *std::min_element(len2, len2 + 3);
-  const double longest = *std::max_element(len2, len2 + 3);
-  if (!(shortest > 0.0) || longest > maxEdgeRatio * maxEdgeRatio * shortest)
-  {
-    return true;
-  }
-  // The largest angle is opposite the longest side: cos = (s1 + s2 - longest) / (2 sqrt(s1 s2)).
-  const int k = static_cast<int>(std::max_element(len2, len2 + 3) - len2);
-  const double s1 = len2[(k + 1) % 3], s2 = len2[(k + 2) % 3];
-  const double cosine = (s1 + s2 - longest) / (2.0 * std::sqrt(s1 * s2));
-  return cosine < std::cos(maxAngleDegrees * 3.14159265358979323846 / 180.0);
-}
-
 SliverRemoval removeSlivers(
   TriMesh& mesh, double maxAngleDegrees, double maxEdgeRatio, const Progress& progress)
 {
   progress.report(0.0);
   SliverRemoval out;
-  auto count = [&](const TriMesh& m)
-  {
-    int64_t n = 0;
-    for (int64_t f = 0; f < m.numTriangles(); ++f)
-    {
-      const int32_t* t = &m.triangles[3 * f];
-      n += isSliver(&m.points[3 * static_cast<size_t>(t[0])], &m.points[3 * static_cast<size_t>(t[1])],
-             &m.points[3 * static_cast<size_t>(t[2])], maxAngleDegrees, maxEdgeRatio)
-        ? 1
-        : 0;
-    }
-    return n;
-  };
-  out.slivers = count(mesh);
+  const SliverTest sliver(maxAngleDegrees, maxEdgeRatio);
+  out.slivers = sliver.count(mesh);
   if (out.slivers == 0)
   {
-    out.keptPoints.resize(static_cast<size_t>(mesh.numPoints()));
-    out.keptTriangles.resize(static_cast<size_t>(mesh.numTriangles()));
-    for (size_t i = 0; i < out.keptPoints.size(); ++i)
-    {
-      out.keptPoints[i] = static_cast<int32_t>(i);
-    }
-    for (size_t i = 0; i < out.keptTriangles.size(); ++i)
-    {
-      out.keptTriangles[i] = static_cast<int32_t>(i);
-    }
     progress.report(1.0);
     return out;
   }
@@ -197,8 +199,8 @@ SliverRemoval removeSlivers(
   }
   progress.report(0.2);
   // CGAL's cap threshold is the cosine of the largest angle; no length limit on collapses.
-  PMP::experimental::remove_almost_degenerate_faces(surface,
-    std::cos(maxAngleDegrees * 3.14159265358979323846 / 180.0), maxEdgeRatio, 0.0);
+  PMP::experimental::remove_almost_degenerate_faces(
+    surface, sliver.capCosine, maxEdgeRatio, 0.0);
   progress.report(0.8);
 
   // Removed elements stay as holes in Surface_mesh's index ranges until collect_garbage, which
@@ -237,7 +239,7 @@ SliverRemoval removeSlivers(
   }
   out.collapsedPoints = mesh.numPoints() - repaired.numPoints();
   mesh = std::move(repaired);
-  out.remainingSlivers = count(mesh);
+  out.remainingSlivers = sliver.count(mesh);
   progress.report(1.0);
   return out;
 }

@@ -36,9 +36,11 @@ HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress 
 
 struct SliverRemoval
 {
-  /// #V' old index of every point kept, ascending (collapses remove points; none move)
+  /// #V' old index of every point kept, ascending (collapses remove points; none move); empty
+  /// when the mesh had no sliver and was left as it is
   std::vector<int32_t> keptPoints;
-  /// #F' old index of every triangle kept, ascending; a flipped pair keeps its two indices
+  /// #F' old index of every triangle kept, ascending (a flipped pair keeps its two indices);
+  /// empty when the mesh had no sliver
   std::vector<int32_t> keptTriangles;
   int64_t collapsedPoints = 0;   ///< needles removed by collapsing their shortest edge
   int64_t reshapedTriangles = 0; ///< kept triangles whose corners changed (cap edge flips)
@@ -46,11 +48,6 @@ struct SliverRemoval
   int64_t remainingSlivers = 0;  ///< and after (no valid collapse or flip removes them)
   bool nonManifold = false;      ///< the mesh is not manifold: nothing was changed
 };
-
-/// Whether triangle (a, b, c) is a sliver: a cap (an angle above maxAngleDegrees) or a needle
-/// (longest side over shortest above maxEdgeRatio).
-bool isSliver(const double* a, const double* b, const double* c, double maxAngleDegrees,
-  double maxEdgeRatio);
 
 /// Removes the slivers of `mesh` (CGAL, Polygon_mesh_processing::experimental::
 /// remove_almost_degenerate_faces): a needle loses its shortest edge by a half-edge collapse
@@ -60,8 +57,8 @@ bool isSliver(const double* a, const double* b, const double* c, double maxAngle
 ///
 /// @param[in,out] mesh  an oriented triangle mesh; when a vertex or edge is not manifold the mesh
 ///   is left unchanged and SliverRemoval::nonManifold is set
-/// @param[in] maxAngleDegrees  caps: largest angle above this (90 .. 180)
-/// @param[in] maxEdgeRatio     needles: longest side over shortest above this (> 1)
+/// @param[in] maxAngleDegrees  caps: largest angle above this (PreparationOptions::sliverAngle)
+/// @param[in] maxEdgeRatio     needles: longest side over shortest above this
 SliverRemoval removeSlivers(TriMesh& mesh, double maxAngleDegrees, double maxEdgeRatio,
   const Progress& progress = {});
 } // namespace tc
