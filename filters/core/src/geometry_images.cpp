@@ -901,7 +901,18 @@ struct SampleLayout
 struct ChartGrid
 {
   int64_t n = 0;
-  std::vector<float> values; // gridSamples x SampleLayout::size
+  int32_t size = 0;          // SampleLayout::size
+  std::vector<float> values; // gridSamples x size
+  /// Sample (i, j) of level d (2^d samples per side): the finest sample at stride n / 2^d.
+  float* at(int32_t d, int64_t i, int64_t j)
+  {
+    const int64_t stride = n >> d;
+    return &values[gridIndex(n, i * stride, j * stride) * size];
+  }
+  const float* at(int32_t d, int64_t i, int64_t j) const
+  {
+    return const_cast<ChartGrid*>(this)->at(d, i, j);
+  }
 };
 
 /// The grid triangle of level nd (samples per side) holding parameter (u, v), clamped into the
@@ -999,7 +1010,6 @@ std::vector<double> chartLevelErrors(const TriMesh& mesh, const PatchParameteriz
   for (int32_t d = 0; d <= upTo; ++d)
   {
     const int64_t nd = int64_t(1) << d;
-    const int64_t stride = g.n / nd;
     double worst = 0.0;
     for (size_t v = 0; v < p.points.size(); ++v)
     {
@@ -1007,7 +1017,7 @@ std::vector<double> chartLevelErrors(const TriMesh& mesh, const PatchParameteriz
       Vec3 r = Vec3::Zero();
       for (int k = 0; k < 3; ++k)
       {
-        const float* s = &g.values[gridIndex(g.n, h.i[k] * stride, h.j[k] * stride) * S.size];
+        const float* s = g.at(d, h.i[k], h.j[k]);
         r += h.w[k] * Vec3(s[0], s[1], s[2]);
       }
       worst = std::max(worst, (r - pointOf(mesh, p.points[v])).norm());
@@ -1107,7 +1117,6 @@ void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid&
   const SampleLayout& S, int32_t d)
 {
   const int64_t nd = int64_t(1) << d;
-  const int64_t stride = g.n / nd;
   std::vector<int32_t> unknown(static_cast<size_t>(gridSamples(d)), -1);
   int32_t nu = 0;
   for (int64_t j = 1; j < nd; ++j)
@@ -1121,8 +1130,7 @@ void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid&
   {
     return;
   }
-  auto sample = [&](int64_t i, int64_t j)
-  { return &g.values[gridIndex(g.n, i * stride, j * stride) * S.size]; };
+  auto sample = [&](int64_t i, int64_t j) { return g.at(d, i, j); };
 
   // Data: points and centroids with their weights.
   const int64_t nt = static_cast<int64_t>(p.triangles.size() / 3);
@@ -1984,6 +1992,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       ChartGrid& g = grids[c];
       const int32_t dmax = sampled[c];
       g.n = int64_t(1) << dmax;
+      g.size = S.size;
       const int64_t n = g.n;
       g.values.assign(static_cast<size_t>(gridSamples(dmax)) * S.size, 0.0f);
       const UvLocator locator(p);
@@ -2099,10 +2108,9 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
     auto sideSample = [&](int32_t c, int k, int64_t t) -> float*
     {
       const int64_t n = int64_t(1) << level[c];
-      const int64_t stride = grids[c].n / n;
       const int64_t i = k == 0 ? t : (k == 1 ? n - t : 0);
       const int64_t j = k == 0 ? 0 : (k == 1 ? t : n - t);
-      return &grids[c].values[gridIndex(grids[c].n, i * stride, j * stride) * S.size];
+      return grids[c].at(level[c], i, j);
     };
     parallel_for(
       ne,
@@ -2163,14 +2171,12 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         // The box holds the fitted samples too (they leave the surface), with the axes of the
         // patch's points.
         const int64_t n = int64_t(1) << level[c];
-        const int64_t stride = grids[c].n / n;
         std::vector<Vec3> samples;
         for (int64_t j = 0; j <= n; ++j)
         {
           for (int64_t i = 0; i + j <= n; ++i)
           {
-            const float* q =
-              &grids[c].values[gridIndex(grids[c].n, i * stride, j * stride) * S.size];
+            const float* q = grids[c].at(level[c], i, j);
             samples.emplace_back(q[0], q[1], q[2]);
           }
         }
@@ -2249,7 +2255,6 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       const ChartGrid& g = grids[c];
       for (int32_t k = 0; k <= ch.maxLevel; ++k)
       {
-        const int32_t shift = k + sampled[c] - ch.maxLevel;
         const int32_t d = ch.maxLevel - k;
         const int64_t nd = int64_t(1) << d;
         AtlasImage& image = atlas.images[k];
@@ -2258,7 +2263,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
           for (int64_t i = 0; i + j <= nd; ++i)
           {
             // Level d is the sampled grid at stride 2^(sampled - d): the point-sampled pyramid.
-            const float* src = &g.values[gridIndex(g.n, i << shift, j << shift) * S.size];
+            const float* src = g.at(d, i, j);
             const std::array<int32_t, 2> xy =
               atlasTexel(ch, d, static_cast<int32_t>(i), static_cast<int32_t>(j));
             const size_t texel = static_cast<size_t>(xy[1]) * image.width + xy[0];
