@@ -1393,6 +1393,9 @@ BaseComplexResult Simplifier::run(const Progress& progress)
         break;
       }
       bounded = false;
+      // A vertex is deferred again each time it is popped and refused: queue it once.
+      std::sort(deferred.begin(), deferred.end());
+      deferred.erase(std::unique(deferred.begin(), deferred.end()), deferred.end());
       for (int32_t v : deferred)
       {
         if (!Removed_[v] && !Pinned_[v])
