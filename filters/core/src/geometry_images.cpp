@@ -1000,11 +1000,69 @@ void addFitData(const int32_t (&id)[K], const double (&b)[K], const Vec3 (&x)[K]
   }
 }
 
+/// Distance from 3-D point P at parameter (u, v) to the level-d grid surface there.
+double levelDeviation(const ChartGrid& g, int32_t d, double u, double v, const Vec3& P)
+{
+  const GridHit h = gridHit(u, v, int64_t(1) << d);
+  Vec3 r = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+  {
+    const float* s = g.at(d, h.i[k], h.j[k]);
+    r += h.w[k] * Vec3(s[0], s[1], s[2]);
+  }
+  return (r - P).norm();
+}
+
+/// Dihedral angle above which a patch edge is a crease for chartLevelErrors.
+constexpr double kCreaseDegrees = 45.0;
+
+/// Inner edges of a patch (local point pairs) whose two triangles meet at more than
+/// kCreaseDegrees: creases that no feature line follows, inside a chart.
+std::vector<std::array<int32_t, 2>> patchCreases(
+  const TriMesh& mesh, const PatchParameterization& p)
+{
+  const size_t nt = p.triangles.size() / 3;
+  std::vector<Vec3> normal(nt);
+  std::vector<std::array<int32_t, 3>> edges; // lower point, higher point, triangle
+  edges.reserve(3 * nt);
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const int32_t* c = &p.triangles[3 * t];
+    const Vec3 a = pointOf(mesh, p.points[c[0]]);
+    normal[t] = (pointOf(mesh, p.points[c[1]]) - a).cross(pointOf(mesh, p.points[c[2]]) - a);
+    for (int k = 0; k < 3; ++k)
+    {
+      const int32_t x = c[k], y = c[(k + 1) % 3];
+      edges.push_back({ std::min(x, y), std::max(x, y), static_cast<int32_t>(t) });
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  const double cosine = std::cos(kCreaseDegrees * 3.14159265358979323846 / 180.0);
+  std::vector<std::array<int32_t, 2>> out;
+  for (size_t i = 0; i + 1 < edges.size(); ++i)
+  {
+    if (edges[i][0] != edges[i + 1][0] || edges[i][1] != edges[i + 1][1])
+    {
+      continue;
+    }
+    const Vec3& n0 = normal[edges[i][2]];
+    const Vec3& n1 = normal[edges[i + 1][2]];
+    const double l = n0.norm() * n1.norm();
+    if (l > 0.0 && n0.dot(n1) < cosine * l)
+    {
+      out.push_back({ edges[i][0], edges[i][1] });
+    }
+  }
+  return out;
+}
+
 /// levelError[d] of a chart for d = 0 .. upTo: the largest distance from a patch point to the
 /// level-d grid surface at the same (u, v), the piecewise-linear reconstruction in parameter
-/// space; level d is grid g at stride g.n / 2^d.
+/// space; level d is grid g at stride g.n / 2^d. Also measured where a crease edge of the patch
+/// (patchCreases) crosses a grid line (u, v or u + v a multiple of 2^-d): there grid edges cut
+/// across the fold, and the deviation is largest between the crease's points.
 std::vector<double> chartLevelErrors(const TriMesh& mesh, const PatchParameterization& p,
-  const ChartGrid& g, const SampleLayout& S, int32_t upTo)
+  const ChartGrid& g, const std::vector<std::array<int32_t, 2>>& creases, int32_t upTo)
 {
   std::vector<double> error(static_cast<size_t>(upTo) + 1, 0.0);
   for (int32_t d = 0; d <= upTo; ++d)
@@ -1013,14 +1071,27 @@ std::vector<double> chartLevelErrors(const TriMesh& mesh, const PatchParameteriz
     double worst = 0.0;
     for (size_t v = 0; v < p.points.size(); ++v)
     {
-      const GridHit h = gridHit(p.uv[2 * v], p.uv[2 * v + 1], nd);
-      Vec3 r = Vec3::Zero();
-      for (int k = 0; k < 3; ++k)
+      worst = std::max(
+        worst, levelDeviation(g, d, p.uv[2 * v], p.uv[2 * v + 1], pointOf(mesh, p.points[v])));
+    }
+    for (const auto& edge : creases)
+    {
+      const int32_t a = edge[0], b = edge[1];
+      const double ua = p.uv[2 * a], va = p.uv[2 * a + 1];
+      const double ub = p.uv[2 * b], vb = p.uv[2 * b + 1];
+      const double fa[3] = { ua * nd, va * nd, (ua + va) * nd };
+      const double fb[3] = { ub * nd, vb * nd, (ub + vb) * nd };
+      for (int f = 0; f < 3; ++f)
       {
-        const float* s = g.at(d, h.i[k], h.j[k]);
-        r += h.w[k] * Vec3(s[0], s[1], s[2]);
+        const double lo = std::min(fa[f], fb[f]), hi = std::max(fa[f], fb[f]);
+        for (double line = std::floor(lo) + 1.0; line < hi; line += 1.0)
+        {
+          const double w = (line - fa[f]) / (fb[f] - fa[f]);
+          const Vec3 P = (1.0 - w) * pointOf(mesh, p.points[a]) + w * pointOf(mesh, p.points[b]);
+          worst =
+            std::max(worst, levelDeviation(g, d, ua + w * (ub - ua), va + w * (vb - va), P));
+        }
       }
-      worst = std::max(worst, (r - pointOf(mesh, p.points[v])).norm());
     }
     error[d] = worst;
   }
@@ -1935,6 +2006,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   // 4. Every chart's grid at its sampled level, its error per level and its oriented bounding
   // box.
   std::vector<ChartGrid> grids(nc);
+  std::vector<std::vector<std::array<int32_t, 2>>> creases(nc);
   parallel_for(
     nc,
     [&](int64_t c)
@@ -1942,6 +2014,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       const PatchParameterization& p = param[c];
       AtlasChart& ch = atlas.charts[c];
       const int32_t np = static_cast<int32_t>(p.points.size());
+      creases[c] = patchCreases(mesh, p);
       auto local = [&p](int32_t v)
       {
         return static_cast<int32_t>(
@@ -2078,7 +2151,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         }
       }
 
-      ch.levelError = chartLevelErrors(mesh, p, g, S, dmax);
+      ch.levelError = chartLevelErrors(mesh, p, g, creases[c], dmax);
     },
     progress.sub(0.5, 0.85), blockSteps(nc));
 
@@ -2103,8 +2176,12 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   }
   if (options.fitSamples)
   {
-    // Sides first, at the finer level of their two charts, written into both (the coarser one
-    // takes every other sample); then the interiors, with their sides fixed.
+    // Sides first, then the interiors with their sides fixed. Eq. 8 draws a side at the lower
+    // level of its two charts, so a side is fitted at the lower d_max of its two charts, the
+    // finest level at which it is ever drawn, and written into both. The finer chart's samples
+    // between those (drawn by no level: stitching moves them onto the coarser ones) are put on
+    // the straight line between them, so its interior is fitted against the side it is drawn
+    // with and its levelError measures that side.
     auto sideSample = [&](int32_t c, int k, int64_t t) -> float*
     {
       const int64_t n = int64_t(1) << level[c];
@@ -2120,7 +2197,8 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
         {
           return; // a feature curve stays sampled on the curve, so the crease stays in place
         }
-        const int32_t d = std::max(level[L.edgeChart[2 * e]], level[L.edgeChart[2 * e + 1]]);
+        const int32_t d = std::min(level[L.edgeChart[2 * e]], level[L.edgeChart[2 * e + 1]]);
+        const int32_t finer = std::max(level[L.edgeChart[2 * e]], level[L.edgeChart[2 * e + 1]]);
         // Sample q of the path (lower base vertex first) at level d.
         const PathSamples& ps = paths[e];
         auto at = [&](int64_t q)
@@ -2129,24 +2207,43 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
           return Vec3(v[0], v[1], v[2]);
         };
         const int64_t p0 = patches.pathOffsets[e], p1 = patches.pathOffsets[e + 1];
-        const std::vector<Vec3> fitted =
-          fitPath(mesh, &patches.pathPoints[p0], p1 - p0, d, at);
+        std::vector<Vec3> fitted = fitPath(mesh, &patches.pathPoints[p0], p1 - p0, d, at);
         if (fitted.empty())
         {
-          return;
+          if (finer == d)
+          {
+            return;
+          }
+          // Not fitted (a level below 1): the drawn samples stay, the finer chart's others
+          // still go onto the straight lines between them.
+          fitted.resize((size_t(1) << d) + 1);
+          for (size_t q = 0; q < fitted.size(); ++q)
+          {
+            fitted[q] = at(static_cast<int64_t>(q));
+          }
         }
         for (int slot = 0; slot < 2; ++slot)
         {
           const int32_t c = L.edgeChart[2 * e + slot], k = L.edgeSide[2 * e + slot];
           const bool forward = base.baseTriangles[3 * c + k] == patches.baseEdges[2 * e];
+          const int32_t shift = level[c] - d;
           const int64_t n = int64_t(1) << level[c];
           for (int64_t t = 1; t < n; ++t)
           {
-            const int64_t q = (forward ? t : n - t) << (d - level[c]);
+            // Place along the path at this chart's level: drawn sample q, or between q and q+1.
+            const int64_t r = forward ? t : n - t;
+            const int64_t q = r >> shift;
+            const int64_t rest = r - (q << shift);
+            Vec3 value = fitted[q];
+            if (rest != 0)
+            {
+              const double w = static_cast<double>(rest) / static_cast<double>(int64_t(1) << shift);
+              value = (1.0 - w) * fitted[q] + w * fitted[q + 1];
+            }
             float* out = sideSample(c, k, t);
             for (int x = 0; x < 3; ++x)
             {
-              out[x] = static_cast<float>(fitted[q][x]);
+              out[x] = static_cast<float>(value[x]);
             }
           }
         }
@@ -2167,7 +2264,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
       if (options.fitSamples)
       {
         fitInterior(mesh, param[c], grids[c], S, level[c]);
-        ch.levelError = chartLevelErrors(mesh, param[c], grids[c], S, level[c]);
+        ch.levelError = chartLevelErrors(mesh, param[c], grids[c], creases[c], level[c]);
         // The box holds the fitted samples too (they leave the surface), with the axes of the
         // patch's points.
         const int64_t n = int64_t(1) << level[c];

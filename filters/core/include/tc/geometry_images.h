@@ -44,12 +44,14 @@
 ///   same in every chart.
 /// - Fitted samples (GeometryImageOptions::fitSamples, the default): interpolated samples lie
 ///   on the surface, so on a curved surface every grid triangle is a chord that lies to one
-///   side of it. Once d_max is chosen, each path's samples at the finer d_max of its two charts
-///   are fitted to the path, then each chart's interior samples at its d_max to its patch, by
-///   least squares (data: the points and the triangles' centroids at their (u, v), weighted by
-///   area; a weak membrane on the offsets keeps them smooth where a sample has little data).
-///   Paths along feature curves stay on the curve; corners stay on their base vertex; both
-///   charts of a side still copy the same floats. On a sphere this halves the largest
+///   side of it. Once d_max is chosen, each path's samples at the lower d_max of its two charts
+///   (eq. 8 never draws a side finer) are fitted to the path, the finer chart's samples between
+///   them put on the straight lines it is drawn with, then each chart's interior samples at its
+///   d_max to its patch, by least squares (data: the points and the triangles' centroids at
+///   their (u, v), weighted by area; a weak membrane on the offsets keeps them smooth where a
+///   sample has little data). Paths along feature curves stay on the curve; corners stay on
+///   their base vertex; both charts of a side still copy the same floats at every level both
+///   have. On a sphere this halves the largest
 ///   deviation; on the bench meshes the finest RMS error falls by 13-27%. levelError and the
 ///   box are measured on the fitted samples. Normals and extra attributes stay interpolated.
 /// - Level d is sample (2^(d_max-d) i, 2^(d_max-d) j) of the finest grid: a point-sampled
@@ -161,8 +163,9 @@ PatchParameterization parameterizePatch(const PatchMesh& patches, const BaseComp
 ///         inputDiagonal = bounding-box diagonal of those points; `source` left empty.
 ///         levelError[d] of a chart is the largest distance between a patch point and the point
 ///         of the level-d grid at the same (u, v) (the grid triangle containing its parameter,
-///         interpolated linearly): an upper bound of the distance from the patch's points to the
-///         level-d surface.
+///         interpolated linearly), also taken where a crease edge inside the patch (its
+///         triangles at more than 45 degrees) crosses a grid line: an upper bound of the
+///         distance from the patch's points and creases to the level-d surface.
 /// @throws InputError for arrays that do not match, a patch that is not a disk bounded by its
 ///         paths, bad options or a sampleBudget too small for minLevel
 Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& base,
