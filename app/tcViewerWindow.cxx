@@ -902,6 +902,7 @@ void tcViewerWindow::PushParameters()
 bool tcViewerWindow::OpenFile(const QString& path, int stage)
 {
   this->FileName = path;
+  this->Note.clear();
   this->AtlasFile = IsAtlasFile(path);
   if (this->AtlasFile)
   {
@@ -930,9 +931,10 @@ bool tcViewerWindow::OpenFile(const QString& path, int stage)
   return ok;
 }
 
-bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
+bool tcViewerWindow::Execute(vtkAlgorithm* algorithm, int port)
 {
   this->Error.clear();
+  this->ErrorSource = nullptr;
   this->Running = true;
   this->Cancel->setEnabled(true);
   this->Progress->setValue(0);
@@ -959,16 +961,50 @@ bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
       a->Modified(); // the cancelled result must not be reused
     }
     this->Error = "Cancelled";
+    return false;
+  }
+  return this->Error.isEmpty();
+}
+
+bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
+{
+  bool ok = this->Execute(algorithm, port);
+  if (!ok && this->ErrorSource == this->PathTracing.GetPointer() &&
+    !this->RemoveSlivers->isChecked())
+  {
+    // As `trichart build` does: slivers are what makes the parameterization of a scan or a CAD
+    // mesh too thin to trace, so they are removed and the pipeline runs again; the checked box
+    // and the note say so.
+    const QString first = this->Error;
+    this->RemoveSlivers->setChecked(true);
+    this->PushParameters();
+    ok = this->Execute(algorithm, port);
+    const int at = first.indexOf("tracePaths: ");
+    const QString reason = (at >= 0 ? first.mid(at + 12) : first).section(';', 0, 0).trimmed();
+    if (ok)
+    {
+      this->Note = "The paths could not be traced (" + reason +
+        "); built again with RemoveSlivers on (Preparation).";
+    }
+    else if (this->Error != "Cancelled")
+    {
+      this->RemoveSlivers->setChecked(false);
+      this->PushParameters();
+      this->Error = first + " Built again with RemoveSlivers on, it failed too: " + this->Error;
+    }
+  }
+  if (!ok && this->Error == "Cancelled")
+  {
     this->statusBar()->showMessage("Cancelled", 5000);
     return false;
   }
-  if (!this->Error.isEmpty())
+  if (!ok)
   {
     this->ReportError(this->Error);
     return false;
   }
   this->Progress->setValue(100);
-  this->statusBar()->showMessage("Ready");
+  this->statusBar()->showMessage(this->Note.isEmpty() ? QString("Ready") : this->Note);
   return true;
 }
 
@@ -1148,6 +1184,10 @@ bool tcViewerWindow::ShowStage(int stage)
                 .arg(this->Distance->GetRmsDistance(), 0, 'g', 4)
                 .arg(100.0 * this->Distance->GetRmsDistance() / diagonal, 0, 'f', 3);
     }
+  }
+  if (!this->Note.isEmpty())
+  {
+    info += "<br><font color='#a60'>Note: " + this->Note.toHtmlEscaped() + "</font>";
   }
   this->Info->setText(info);
   if (this->Batch)
@@ -1637,10 +1677,11 @@ void tcViewerWindow::OnProgress(vtkObject* caller, unsigned long, void*)
   QApplication::processEvents();
 }
 
-void tcViewerWindow::OnError(vtkObject*, unsigned long, void* callData)
+void tcViewerWindow::OnError(vtkObject* caller, unsigned long, void* callData)
 {
   if (callData && this->Error.isEmpty())
   {
+    this->ErrorSource = caller;
     // VTK prefixes the message with "ERROR: In file, line N\nclass (address): ".
     QString text = QString::fromUtf8(static_cast<const char*>(callData)).trimmed();
     const int colon = text.indexOf("): ");

@@ -180,6 +180,9 @@ private:
   void UpdateStageAvailability();
   void PushParameters();
   bool Run(vtkAlgorithm* algorithm, int port = 0);
+  /// Updates `algorithm` (port) and says whether it succeeded, leaving the message in Error;
+  /// reports nothing.
+  bool Execute(vtkAlgorithm* algorithm, int port);
   void Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyData* corners);
   bool ShowLOD(bool entering);
   void HideLOD();
@@ -292,6 +295,10 @@ private:
 
   QString FileName;
   QString Error;
+  /// The filter whose ErrorEvent set Error (nullptr: none, or not a filter's).
+  vtkObject* ErrorSource = nullptr;
+  /// What the viewer did on its own for the open file (the sliver retry), shown in the summary.
+  QString Note;
   int CurrentStage = InputStage;
   bool AtlasFile = false; ///< the open file is an atlas: no input mesh
   bool HasLines = false;  ///< the shown stage has lines to draw

@@ -267,3 +267,23 @@ def test_bad_instance_count_is_refused(instances):
     r = viewer(DATA / "meshes" / "cube.off", "--stage", "lod", "--instances", instances,
                "--screenshot", "x.png")
     assert r.returncode == 2 and "--instances" in r.stderr
+
+
+def test_untraceable_paths_are_built_again_without_slivers(tmp_path):
+    # couplingdown's CAD needles make its paths untraceable as prepared by default: the viewer,
+    # like `trichart build`, turns RemoveSlivers on, runs again and says so in the summary.
+    shared = pathlib.Path(os.environ.get("TRICHART_SHARED_DATA", ""))
+    mesh = shared / "cad" / "couplingdown.off"
+    if not mesh.is_file():
+        pytest.skip(f"{mesh} is absent (../shared/data not beside the checkout)")
+    r = viewer(mesh, "--stage", "patches,reconstruction", "--screenshot", tmp_path / "{stage}.png")
+    assert r.returncode == 0, r.stderr
+    for title in ("Triangle patches", "Reconstruction"):
+        text = summary(r.stdout, title)
+        assert "Note: The paths could not be traced (input triangle" in text, text
+        assert "built again with RemoveSlivers on" in text, text
+    assert re.search(r"(\d+) patches", summary(r.stdout, "Triangle patches"))
+    assert (tmp_path / "reconstruction.png").stat().st_size > 0
+    # A mesh that traces as it is gets no note.
+    r = viewer(BUNNY, "--stage", "patches", "--screenshot", tmp_path / "bunny.png")
+    assert r.returncode == 0 and "Note:" not in r.stdout, r.stdout
