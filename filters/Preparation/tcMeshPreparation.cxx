@@ -74,6 +74,9 @@ int tcMeshPreparation::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->Report.clear();
   this->Changed = false;
+  this->NonManifoldEdges = this->NonManifoldVertices = this->BoundaryEdges = 0;
+  this->OpenHoles = this->NonOrientableComponents = 0;
+  this->ClosedManifold = false;
 
   // 2. Validate: a surface needs polygons; the core checks everything else.
   if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
@@ -127,7 +130,16 @@ int tcMeshPreparation::RequestData(
   cd->AddArray(tcvtk::MakeIntArray(tc::kComponentId, result.componentId));
   output->GetFieldData()->PassData(input->GetFieldData());
 
-  this->Report = result.report.text();
+  const tc::PreparationReport& counts = result.report;
+  this->NonManifoldEdges = counts.nonManifoldEdges;
+  this->NonManifoldVertices = counts.nonManifoldVertices;
+  this->BoundaryEdges = counts.boundaryEdges;
+  this->OpenHoles = counts.openHoles;
+  this->NonOrientableComponents = counts.nonOrientableComponents;
+  this->ClosedManifold = this->Orient && counts.closedComponents == counts.components &&
+    counts.nonOrientableComponents == 0 &&
+    (this->SplitNonManifold || counts.nonManifoldEdges + counts.nonManifoldVertices == 0);
+  this->Report = counts.text();
   if (ignored > 0)
   {
     this->Report += "ignored " + std::to_string(ignored) + " vertex and line cells\n";

@@ -88,6 +88,22 @@ public:
   /// True if the last run altered geometry or connectivity.
   bool GetChanged() const { return this->Changed; }
 
+  ///@{
+  /// Counts of the last run (also in the report): non-manifold edges and vertices found in the
+  /// input (before splitting), boundary edges of the output, holes FillHoles left open, and
+  /// components left unoriented.
+  vtkIdType GetNonManifoldEdges() const { return this->NonManifoldEdges; }
+  vtkIdType GetNonManifoldVertices() const { return this->NonManifoldVertices; }
+  vtkIdType GetBoundaryEdges() const { return this->BoundaryEdges; }
+  vtkIdType GetOpenHoles() const { return this->OpenHoles; }
+  vtkIdType GetNonOrientableComponents() const { return this->NonOrientableComponents; }
+  ///@}
+
+  /// True if the last run's output is what tcBaseComplex and the stages after it need: every
+  /// component closed, manifold (nothing left unsplit) and consistently oriented (false with
+  /// Orient off, which leaves the orientation unchecked).
+  bool GetClosedManifold() const { return this->ClosedManifold; }
+
 protected:
   tcMeshPreparation();
   ~tcMeshPreparation() override;
@@ -108,6 +124,12 @@ private:
   double SliverEdgeRatio = 10.0;
   std::string Report;
   bool Changed = false;
+  vtkIdType NonManifoldEdges = 0;
+  vtkIdType NonManifoldVertices = 0;
+  vtkIdType BoundaryEdges = 0;
+  vtkIdType OpenHoles = 0;
+  vtkIdType NonOrientableComponents = 0;
+  bool ClosedManifold = false;
 };
 
 #endif

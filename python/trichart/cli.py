@@ -88,6 +88,7 @@ def cmd_build(args):
                                      "max_error": args.max_error},
                        geometry_options=options,
                        prepare_options={"fill_holes": args.fill_holes,
+                                        "max_hole_edges": args.max_hole_edges,
                                         "split_non_manifold": args.split_non_manifold,
                                         "remove_slivers": args.remove_slivers})
     finally:
@@ -154,6 +155,7 @@ def cmd_prepare(args):
     clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
                             split_non_manifold=args.split_non_manifold,
                             fill_holes=args.fill_holes,
+                            max_hole_edges=args.max_hole_edges,
                             remove_slivers=args.remove_slivers)
     print(report.strip() or "nothing to change")
     print(f"wrote {write_vtp(clean, args.output)}")
@@ -188,8 +190,11 @@ def main(argv=None):
     p.add_argument("--split-non-manifold", action="store_true",
                    help="split non-manifold edges and vertices in the preparation")
     p.add_argument("--fill-holes", action="store_true",
-                   help="close the mesh's holes (up to 1000 boundary edges each) with faired "
-                        "patches first: the pipeline needs closed surfaces, scans often are not")
+                   help="close the mesh's holes (up to --max-hole-edges boundary edges each) "
+                        "with faired patches first: the pipeline needs closed surfaces, scans "
+                        "often are not")
+    p.add_argument("--max-hole-edges", type=int, default=1000,
+                   help="largest hole --fill-holes closes, in boundary edges (default 1000)")
     p.add_argument("--remove-slivers", action="store_true",
                    help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
                         "times the shortest) in the preparation: scans often have thousands, "
@@ -219,7 +224,10 @@ def main(argv=None):
                    help="merge points closer than this fraction of the diagonal")
     p.add_argument("--split-non-manifold", action="store_true")
     p.add_argument("--fill-holes", action="store_true",
-                   help="close holes of up to 1000 boundary edges with faired patches")
+                   help="close holes of up to --max-hole-edges boundary edges with faired "
+                        "patches")
+    p.add_argument("--max-hole-edges", type=int, default=1000,
+                   help="largest hole --fill-holes closes, in boundary edges (default 1000)")
     p.add_argument("--remove-slivers", action="store_true",
                    help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
                         "times the shortest)")
@@ -232,6 +240,8 @@ def main(argv=None):
             parser.error(f"--crease-angle must be 0 .. 180 degrees, not {args.crease_angle}")
         if not 0.0 <= args.max_error <= 1.0:
             parser.error(f"--max-error must be 0 .. 1, not {args.max_error}")
+    if args.command in ("build", "prepare") and args.max_hole_edges < 3:
+        parser.error(f"--max-hole-edges must be 3 or more, not {args.max_hole_edges}")
 
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()

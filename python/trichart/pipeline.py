@@ -80,6 +80,15 @@ def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fi
             max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
             sliver_edge_ratio=10.0, progress=None):
     """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
+    f = _prepared(mesh, merge_tolerance, split_non_manifold, orient, fill_holes, max_hole_edges,
+                  remove_slivers, sliver_angle, sliver_edge_ratio, progress)
+    return _output(f), f.GetReport()
+
+
+def _prepared(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fill_holes=False,
+              max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
+              sliver_edge_ratio=10.0, progress=None):
+    """tcMeshPreparation on `mesh`, run; returns the filter (its output, report and counts)."""
     f = TriChartPreparation.tcMeshPreparation()
     f.SetInputData(mesh)
     f.SetMergeTolerance(merge_tolerance)
@@ -91,7 +100,43 @@ def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fi
     f.SetSliverAngle(sliver_angle)
     f.SetSliverEdgeRatio(sliver_edge_ratio)
     run(f, "prepare", progress)
-    return _output(f), f.GetReport()
+    return f
+
+
+def _closed_manifold_check(f):
+    """Raise TriChartError, before the stages that need one, when tcMeshPreparation `f` did not
+    give a closed, oriented manifold, with what to turn on (property and command-line flag)."""
+    if f.GetClosedManifold():
+        return
+    def count(n, one, many):
+        return f"{n} {one if n == 1 else many}"
+
+    problems = []
+    if not f.GetSplitNonManifold() and f.GetNonManifoldEdges() + f.GetNonManifoldVertices():
+        found = [count(n, f"non-manifold {what}", f"non-manifold {what}s" if what == "edge"
+                       else "non-manifold vertices")
+                 for n, what in ((f.GetNonManifoldEdges(), "edge"),
+                                 (f.GetNonManifoldVertices(), "vertex")) if n]
+        problems.append(" and ".join(found) + " (split them: SplitNonManifold, trichart build "
+                        "--split-non-manifold)")
+    if f.GetNonOrientableComponents():
+        problems.append(count(f.GetNonOrientableComponents(), "non-orientable (Moebius-like) "
+                              "component", "non-orientable (Moebius-like) components") +
+                        ", which no orientation fixes (repair it in a mesh editor)")
+    if f.GetBoundaryEdges():
+        if not f.GetFillHoles():
+            problems.append(count(f.GetBoundaryEdges(), "boundary edge", "boundary edges") +
+                            " (close the holes: FillHoles, trichart build --fill-holes)")
+        else:
+            problems.append(count(f.GetOpenHoles(), "hole", "holes") + " left open, " +
+                            count(f.GetBoundaryEdges(), "boundary edge", "boundary edges") +
+                            " in all (FillHoles closes holes of up to "
+                            f"MaxHoleEdges = {f.GetMaxHoleEdges()} edges with a manifold "
+                            "patch: raise it, trichart build --max-hole-edges)")
+    if not f.GetOrient():
+        problems.append("orientation unchecked (turn Orient on)")
+    raise TriChartError("prepare: the prepared mesh is not a closed, oriented manifold, which "
+                        "the base complex needs: " + "; ".join(problems or ["unknown"]))
 
 
 def _configure(algorithm, options):
@@ -275,6 +320,9 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     with image=True, pictures of curvature, features and the base complex. Returns a dict with
     every output, the written paths, the preparation report and the seconds per stage.
 
+    The prepared mesh must be a closed, oriented manifold: otherwise TriChartError says, right
+    after the preparation, which of its options (prepare_options) to turn on.
+
     With retry_slivers (the default), when the paths cannot be traced and the preparation did
     not remove slivers, it is run again with remove_slivers=True and the stages after it too:
     slivers are what makes the parameterization too thin to trace on scans and CAD meshes.
@@ -293,7 +341,10 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     mesh = timed("read", read_mesh, path, progress)
 
     def front(options):
-        clean, report = timed("prepare", prepare, mesh, progress=progress, **options)
+        prepared = timed("prepare", _prepared, mesh, progress=progress, **options)
+        # Fail here, not after curvature, clusters and features have run for minutes.
+        _closed_manifold_check(prepared)
+        clean, report = _output(prepared), prepared.GetReport()
         surface, crest = timed("curvature", curvature, clean, progress=progress,
                                **(curvature_options or {}))
         clustered, boundaries = timed("clusters", cluster, surface, progress=progress,

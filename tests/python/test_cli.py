@@ -139,3 +139,27 @@ def test_build_removes_slivers_and_retries_when_the_paths_cannot_be_traced(share
     r = run("build", mesh, "-o", tmp_path / "d.exr", "-q", "--remove-slivers")
     assert r.returncode == 0, r.stderr
     assert "note:" not in r.stdout and "found 180 slivers" in r.stdout
+
+
+def test_an_open_mesh_is_refused_after_the_preparation_with_the_flag_to_use(testing_data,
+                                                                             tmp_path):
+    # The bundled bunny with one triangle taken out: a hole of 3 boundary edges.
+    lines = (testing_data / "meshes" / "bunny_npm.off").read_text().split("\n")
+    points, faces = map(int, lines[1].split()[:2])
+    lines[1] = f"{points} {faces - 1} 0"
+    del lines[2 + points]
+    mesh = tmp_path / "holed.off"
+    mesh.write_text("\n".join(lines))
+    r = run("build", mesh, "-o", tmp_path / "holed.exr")
+    assert r.returncode == 2
+    assert "3 boundary edges (close the holes: FillHoles, trichart build --fill-holes)" in r.stderr
+    # It stops before the stages that would run for nothing.
+    assert "prepare: 100%" in r.stderr and "curvature:" not in r.stderr, r.stderr
+    assert not (tmp_path / "holed.exr").exists()
+    r = run("build", mesh, "-o", tmp_path / "holed.exr", "-q", "--fill-holes",
+            "--max-hole-edges", "3")
+    assert r.returncode == 0, r.stderr
+    assert "filled 1 hole with 1 triangle" in r.stdout, r.stdout
+    # Too small a limit leaves the hole open and names the option that closes it.
+    r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--fill-holes", "--max-hole-edges", "2")
+    assert r.returncode == 2 and "--max-hole-edges must be 3 or more" in r.stderr

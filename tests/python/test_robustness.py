@@ -49,3 +49,67 @@ def test_split_leaves_no_non_manifold_edge(shared_data):
     edges.NonManifoldEdgesOn()
     edges.Update()
     assert edges.GetOutput().GetNumberOfLines() == 0
+
+
+def feature_edge_count(mesh, boundary):
+    from vtkmodules.vtkFiltersCore import vtkFeatureEdges
+
+    edges = vtkFeatureEdges()
+    edges.SetInputData(mesh)
+    edges.FeatureEdgesOff()
+    edges.ManifoldEdgesOff()
+    edges.SetBoundaryEdges(boundary)
+    edges.SetNonManifoldEdges(not boundary)
+    edges.Update()
+    return edges.GetOutput().GetNumberOfLines()
+
+
+@pytest.mark.parametrize("name", SMALL)
+@pytest.mark.parametrize("split", [False, True])
+def test_preparation_counts_match_the_edges_of_its_output(shared_data, name, split):
+    # The counts the build checks before the base complex, against VTK's own edge
+    # classification of the prepared mesh.
+    f = trichart.tcMeshPreparation()
+    f.SetInputData(trichart.read_mesh(shared_data / "static_small" / name))
+    f.SetSplitNonManifold(split)
+    f.Update()
+    clean = f.GetOutput()
+    boundary = feature_edge_count(clean, True)
+    assert f.GetBoundaryEdges() == boundary
+    if split:
+        assert feature_edge_count(clean, False) == 0
+    else:
+        assert (f.GetNonManifoldEdges() > 0) == (feature_edge_count(clean, False) > 0)
+    flagged = clean.GetPointData().GetArray("NonManifoldVertex")
+    assert f.GetNonManifoldVertices() <= sum(flagged.GetValue(i)
+                                             for i in range(flagged.GetNumberOfTuples()))
+    closed = boundary == 0 and f.GetNonOrientableComponents() == 0 and \
+        (split or f.GetNonManifoldEdges() + f.GetNonManifoldVertices() == 0)
+    assert f.GetClosedManifold() == closed
+    # The data README: bunny, elephant and homer are closed manifolds; cow has one pinched
+    # vertex; horse and the dragon scan have non-manifold edges; the teapot is open.
+    expected = {"bunny_npm.off": True, "elephant.off": True, "homer.off": True,
+                "cow.off": split, "teapot_npm.off": False, "horse_glmark2.obj": False,
+                "dragon_vrip_res4.ply.gz": False}
+    assert f.GetClosedManifold() == expected[name], f.GetReport()
+
+
+@pytest.mark.parametrize("name,options,message", [
+    ("teapot_npm.off", {"split_non_manifold": True}, "boundary edges (close the holes: FillHoles"),
+    ("cow.off", {}, "1 non-manifold vertex (split them: SplitNonManifold"),
+    ("horse_glmark2.obj", {}, "--split-non-manifold"),
+    ("dragon_vrip_res4.ply.gz", {"split_non_manifold": True},
+     "1 non-orientable (Moebius-like) component"),
+])
+def test_build_stops_after_the_preparation_on_a_surface_it_cannot_use(shared_data, tmp_path,
+                                                                      name, options, message):
+    stages = []
+    with pytest.raises(trichart.TriChartError) as error:
+        trichart.build(shared_data / "static_small" / name, tmp_path / "x.exr",
+                       prepare_options=options,
+                       progress=lambda stage, fraction: stages.append(stage))
+    assert str(error.value).startswith("prepare: the prepared mesh is not a closed, oriented "
+                                       "manifold"), error.value
+    assert message in str(error.value)
+    assert "curvature" not in stages and "prepare" in stages
+    assert not (tmp_path / "x.exr").exists()

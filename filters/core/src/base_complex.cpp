@@ -462,8 +462,9 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     if (same != 1 || twin > 1)
     {
       throw InputError("buildBaseComplex: edge " + edge() +
-        " has more than 2 triangles or inconsistent orientation; run tcMeshPreparation with "
-        "splitting and orientation");
+        " has more than 2 triangles or inconsistent orientation (split non-manifold edges and "
+        "orient the mesh in the preparation: SplitNonManifold and Orient, trichart build "
+        "--split-non-manifold)");
     }
     if (twin == 0)
     {
@@ -489,7 +490,8 @@ void Simplifier::validateAndLink(const std::vector<uint8_t>& featureVertex,
     if (steps != valence)
     {
       throw InputError("buildBaseComplex: the triangles around point " + std::to_string(input) +
-        " form more than one fan; run tcMeshPreparation with splitting");
+        " form more than one fan (split non-manifold vertices in the preparation: "
+        "SplitNonManifold, trichart build --split-non-manifold)");
     }
     Out_[v] = start;
     Valence_[v] = valence;

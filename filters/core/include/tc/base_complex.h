@@ -82,7 +82,8 @@ struct BaseComplexResult
 /// @param[in] cornerVertex   #V 1 at a corner (never removed; may be empty)
 /// @param[in] featureEdges   #E x 2 vertex ids of the mesh edges that make the feature curves
 /// @throws InputError for a mesh that is not a closed oriented manifold, or arrays that do not
-///         match it; the message says what to fix (e.g. run tcMeshPreparation with splitting)
+///         match it; the message says what to fix (e.g. split non-manifold vertices in
+///         tcMeshPreparation)
 BaseComplexResult buildBaseComplex(const TriMesh& mesh, const std::vector<uint8_t>& featureVertex,
   const std::vector<uint8_t>& cornerVertex, const std::vector<int32_t>& featureEdges,
   const BaseComplexOptions& options = {}, const Progress& progress = {});
