@@ -350,7 +350,10 @@ void tcViewerWindow::BuildUi()
   layout->addWidget(this->Stages);
   this->Panels = new QStackedWidget(panel);
   this->Panels->addWidget(
-    new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files.", panel));
+    new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files, and the\nsurfaces "
+               "of scene files in their\nrest pose: .glb, .gltf, .fbx, .dae,\n.x, .md5mesh, "
+               ".md2 and .3ds.",
+      panel));
   this->Panels->addWidget(this->BuildPreparationPanel());
   this->Panels->addWidget(this->BuildCurvaturePanel());
   this->Panels->addWidget(this->BuildClusteringPanel());
@@ -476,10 +479,14 @@ void tcViewerWindow::BuildUi()
   connect(open, &QAction::triggered, this,
     [this]()
     {
+      QString meshes = "*.gz";
+      for (const QString& ext : QString(tcMeshReader::GetSupportedExtensions()).split(' '))
+      {
+        meshes += " *." + ext;
+      }
       const QString path = QFileDialog::getOpenFileName(this, "Open mesh or atlas", QString(),
-        "Meshes and atlases (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk *.exr);;"
-        "Meshes (*.ply *.ply.gz *.gz *.obj *.stl *.off *.vtp *.vtk);;Atlases (*.exr);;"
-        "All files (*)");
+        "Meshes and atlases (" + meshes + " *.exr);;Meshes (" + meshes +
+          ");;Atlases (*.exr);;All files (*)");
       if (!path.isEmpty())
       {
         this->OpenFile(path, std::max(0, this->CurrentStage));

@@ -6,6 +6,7 @@
 #include "tc/array_names.h"
 #include "tc/errors.h"
 #include "tc/off_io.h"
+#include "tc/scene_io.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -46,7 +47,8 @@ bool EndsWith(const std::string& s, const std::string& suffix)
     s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// The format key of a file name: "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk" or "".
+/// The format key of a file name: "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk", one of
+/// tc::sceneExtensions() (read through Assimp), or "".
 std::string FormatOf(const std::string& fileName)
 {
   const std::string name = Lower(fileName);
@@ -57,7 +59,17 @@ std::string FormatOf(const std::string& fileName)
       return ext;
     }
   }
+  if (tc::isSceneFile(name))
+  {
+    return name.substr(name.rfind('.') + 1);
+  }
   return std::string();
+}
+
+/// "N thing" or "N things".
+std::string Count(int64_t n, const char* one, const char* many)
+{
+  return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 /// Inflates a whole gzip file into memory (vtkPLYReader reads from a string).
@@ -117,7 +129,9 @@ bool tcMeshReader::CanReadFile(const char* fileName)
 
 const char* tcMeshReader::GetSupportedExtensions()
 {
-  return "ply ply.gz obj stl off vtp vtk";
+  static const std::string extensions =
+    std::string("ply ply.gz obj stl off vtp vtk ") + tc::sceneExtensions();
+  return extensions.c_str();
 }
 
 int tcMeshReader::RequestData(
@@ -143,7 +157,8 @@ int tcMeshReader::RequestData(
   if (format.empty())
   {
     vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads ."
-                                  << "ply, .ply.gz, .obj, .stl, .off, .vtp and .vtk files.");
+                                  << "ply, .ply.gz, .obj, .stl, .off, .vtp and .vtk meshes, and "
+                                  << "the scene formats " << tc::sceneExtensions() << ".");
     return 0;
   }
 
@@ -152,7 +167,47 @@ int tcMeshReader::RequestData(
   vtkSmartPointer<vtkPolyData> mesh;
   vtkSmartPointer<vtkAlgorithm> reader;
   std::string error;
-  if (format == "off")
+  std::string sceneReport;
+  if (tc::isSceneFile(this->FileName))
+  {
+    try
+    {
+      const tc::Scene scene = tc::readScene(this->FileName, tcvtk::MakeProgress(this));
+      mesh = vtkSmartPointer<vtkPolyData>::New();
+      tcvtk::FromPolygonSoup(scene.soup, mesh);
+      mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene.meshId));
+      std::ostringstream facts;
+      facts << Count(static_cast<int64_t>(scene.meshNames.size()), "mesh", "meshes") << " ("
+            << scene.meshInstances << " placed by the scene's nodes; cell array "
+            << tc::kSceneMeshId << "), in the rest pose\n";
+      if (scene.skinnedMeshes > 0)
+      {
+        facts << "skinned: " << Count(scene.skinnedMeshes, "mesh", "meshes") << ", "
+              << Count(scene.bones, "bone", "bones") << " (skin weights not read)\n";
+      }
+      if (scene.animations + scene.morphTargets > 0)
+      {
+        facts << Count(scene.animations, "animation", "animations") << " and "
+              << Count(scene.morphTargets, "morph target", "morph targets") << " not applied\n";
+      }
+      if (scene.skippedPrimitives > 0)
+      {
+        facts << "skipped " << Count(scene.skippedPrimitives, "point or line", "points and lines")
+              << "\n";
+      }
+      sceneReport = (scene.importer.empty() ? "" : "importer: " + scene.importer + "\n") +
+        facts.str();
+    }
+    catch (const tc::Aborted&)
+    {
+      return 0;
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
+  }
+  else if (format == "off")
   {
     try
     {
@@ -253,7 +308,7 @@ int tcMeshReader::RequestData(
     report << ", " << output->GetNumberOfLines() + output->GetNumberOfVerts()
            << " vertices/lines (not surface cells)";
   }
-  report << "\n";
+  report << "\n" << sceneReport;
   for (int i = 0; i < output->GetPointData()->GetNumberOfArrays(); ++i)
   {
     const char* name = output->GetPointData()->GetArrayName(i);

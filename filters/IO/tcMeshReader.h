@@ -2,10 +2,13 @@
 /**
  * @class tcMeshReader
  * @brief Reads a surface mesh from PLY (also gzip-compressed .ply.gz), OBJ, STL, OFF, VTP or
- * legacy VTK, choosing the format by the file name's extension.
+ * legacy VTK, or the surfaces of a scene file (glTF .glb/.gltf, FBX, COLLADA .dae, DirectX .x,
+ * MD5 .md5mesh, MD2, 3DS) through Assimp, choosing the format by the file name's extension.
  *
  * The output is the file's polygons with their point and cell arrays, unchanged; cleaning is
- * tcMeshPreparation's job. What was read (format, points, polygons, arrays) is in GetReport()
+ * tcMeshPreparation's job. A scene file gives every mesh its nodes place, with their
+ * transforms, in the rest pose, and a cell array "SceneMeshId"; its bones and animations are
+ * counted in the report, not applied (tc::readScene). What was read (format, points, polygons, arrays) is in GetReport()
  * and in the field array "ReaderReport". A missing file, an unknown extension or a file that
  * holds no polygons is an error that names the file and what to do.
  */

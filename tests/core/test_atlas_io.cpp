@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The atlas file: writeAtlas then readAtlas is bit-exact, a failed write changes nothing, and
 // every kind of damaged or foreign file is refused with a message that names it.
+#include "temp_folder.h"
 #include "tc/atlas.h"
 #include "tc/atlas_io.h"
 #include "tc/errors.h"
@@ -674,22 +675,10 @@ void writeOldVersion(
   saveParts(to, parts);
 }
 
-/// A fresh, empty folder per test, removed afterwards.
-class AtlasIo : public ::testing::Test
+/// Atlas files in a fresh folder per test.
+class AtlasIo : public tctest::TempFolderTest
 {
 protected:
-  void SetUp() override
-  {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    Folder = fs::temp_directory_path() /
-      (std::string("tc_atlas_io_") + info->name() + "_" +
-        std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    fs::create_directories(Folder);
-  }
-  void TearDown() override { fs::remove_all(Folder); }
-
-  std::string file(const std::string& name) const { return (Folder / name).string(); }
-
   /// Names in the folder (to see that no temporary file is left behind).
   std::vector<std::string> listing() const
   {
@@ -739,8 +728,6 @@ protected:
         setMetadata(parts, metadata.dump());
       });
   }
-
-  fs::path Folder;
 };
 
 bool mentions(const std::string& message, const std::string& what)

@@ -2,6 +2,7 @@
 #include "tc/errors.h"
 #include "tc/off_io.h"
 
+#include "temp_folder.h"
 #include "test_data.h"
 
 #include <gtest/gtest.h>
@@ -19,27 +20,10 @@ namespace
 {
 namespace fs = std::filesystem;
 
-/// A fresh, empty folder per test, removed afterwards.
-class OffFiles : public ::testing::Test
+/// Files in a fresh folder per test.
+class OffFiles : public tctest::TempFolderTest
 {
 protected:
-  void SetUp() override
-  {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    Folder = fs::temp_directory_path() /
-      (std::string("tc_off_") + info->name() + "_" +
-        std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    fs::create_directories(Folder);
-  }
-  void TearDown() override { fs::remove_all(Folder); }
-
-  std::string write(const std::string& name, const std::string& text) const
-  {
-    const std::string path = (Folder / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
   /// The message of the tc::InputError that readOFF throws for `text` ("" if none).
   std::string readError(const std::string& text) const
   {
@@ -54,8 +38,6 @@ protected:
     }
     return "";
   }
-
-  fs::path Folder;
 };
 
 struct SharedMesh

@@ -163,3 +163,12 @@ def test_an_open_mesh_is_refused_after_the_preparation_with_the_flag_to_use(test
     # Too small a limit leaves the hole open and names the option that closes it.
     r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--fill-holes", "--max-hole-edges", "2")
     assert r.returncode == 2 and "--max-hole-edges must be 3 or more" in r.stderr
+
+
+def test_build_takes_a_skinned_character_in_its_rest_pose(shared_data, tmp_path):
+    # The FBX snake of the data README: a closed tube of 1056 quads, 2112 triangles.
+    mesh = shared_data / "skinned" / "snake_fbx" / "animation_with_skeleton.fbx"
+    r = run("build", mesh, "-o", tmp_path / "snake.exr", "-q")
+    assert r.returncode == 0, r.stderr
+    assert "2112 triangles" in r.stdout and "triangulated 1056 polygons" in r.stdout, r.stdout
+    assert (tmp_path / "snake.exr").stat().st_size > 0

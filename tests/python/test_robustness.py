@@ -113,3 +113,27 @@ def test_build_stops_after_the_preparation_on_a_surface_it_cannot_use(shared_dat
     assert message in str(error.value)
     assert "curvature" not in stages and "prepare" in stages
     assert not (tmp_path / "x.exr").exists()
+
+
+@pytest.mark.parametrize("name,importer,triangles,bones", [
+    ("wuson/wuson.glb", "glTF2", 3732, 37),
+    ("wuson/Testwuson.X", "XFile", 3732, 37),
+    ("snake_fbx/animation_with_skeleton.fbx", "FBX", 2112, 14),
+    ("snake_fbx/snake_fbx.glb", "glTF2", 2112, 13),
+    ("ffflag_md5/ffflag.md5mesh", "MD5", 235, 19),
+    ("md2/sydney.md2", "Quake II", 679, 0),
+])
+def test_scene_files_are_read_in_their_rest_pose(shared_data, name, importer, triangles, bones):
+    # The skinned characters of the data README, through Assimp: the surfaces, counted bones.
+    # (The FBX snake counts its root node as a bone; ffflag has one duplicate face.)
+    reader = trichart.tcMeshReader()
+    reader.SetFileName(str(shared_data / "skinned" / name))
+    reader.Update()
+    report = reader.GetReport()
+    assert "importer: " in report and importer in report, report
+    assert (f"{bones} bones" in report) == (bones > 0), report
+    mesh = reader.GetOutput()
+    ids = mesh.GetCellData().GetArray("SceneMeshId")
+    assert ids is not None and ids.GetNumberOfTuples() == mesh.GetNumberOfCells()
+    clean, _ = trichart.prepare(mesh)
+    assert clean.GetNumberOfPolys() == triangles

@@ -80,4 +80,5 @@ constexpr const char* kDistanceReport = "DistanceReport"; ///< field: the figure
 
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
+constexpr const char* kSceneMeshId = "SceneMeshId"; ///< cell: mesh of a scene file (glTF, FBX...)
 } // namespace tc
