@@ -27,8 +27,8 @@ int main(int argc, char* argv[])
   parser.setApplicationDescription("TriChart viewer: inspect every stage of the pipeline.");
   parser.addHelpOption();
   parser.addPositionalArgument("files",
-    "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk; scenes .glb, .gltf, .fbx, .dae, .x, "
-    ".md5mesh, .md2, .3ds) or atlas (.exr) files, opened in turn; "
+    "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk; scenes .glb, .gltf, .fbx, .x, .md2) or "
+    "atlas (.exr) files, opened in turn; "
     "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas or "
     "lod).",
     "[files...]");

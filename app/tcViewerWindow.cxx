@@ -351,8 +351,7 @@ void tcViewerWindow::BuildUi()
   this->Panels = new QStackedWidget(panel);
   this->Panels->addWidget(
     new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files, and the\nsurfaces "
-               "of scene files in their\nrest pose: .glb, .gltf, .fbx, .dae,\n.x, .md5mesh, "
-               ".md2 and .3ds.",
+               "of scene files in their\nrest pose: .glb, .gltf, .fbx, .x\nand .md2.",
       panel));
   this->Panels->addWidget(this->BuildPreparationPanel());
   this->Panels->addWidget(this->BuildCurvaturePanel());

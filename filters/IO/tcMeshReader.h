@@ -2,8 +2,8 @@
 /**
  * @class tcMeshReader
  * @brief Reads a surface mesh from PLY (also gzip-compressed .ply.gz), OBJ, STL, OFF, VTP or
- * legacy VTK, or the surfaces of a scene file (glTF .glb/.gltf, FBX, COLLADA .dae, DirectX .x,
- * MD5 .md5mesh, MD2, 3DS) through Assimp, choosing the format by the file name's extension.
+ * legacy VTK, or the surfaces of a scene file (glTF .glb/.gltf, FBX, DirectX .x, MD2) through
+ * Assimp, choosing the format by the file name's extension.
  *
  * The output is the file's polygons with their point and cell arrays, unchanged; cleaning is
  * tcMeshPreparation's job. A scene file gives every mesh its nodes place, with their

@@ -169,7 +169,7 @@ def main(argv=None):
     sub.add_parser("info", help="versions, build type and the ParaView plugin path")
     p = sub.add_parser("build", help="run the whole static pipeline and write the atlas")
     p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), or a "
-                                "scene (.glb, .gltf, .fbx, .dae, .x, .md5mesh, .md2, .3ds) whose "
+                                "scene (.glb, .gltf, .fbx, .x, .md2) whose "
                                 "surfaces are read in their rest pose")
     p.add_argument("-o", "--output", required=True, help="atlas file to write (.exr)")
     p.add_argument("--stages", metavar="DIR",

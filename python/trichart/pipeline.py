@@ -70,8 +70,7 @@ def _output(algorithm, port=0):
 
 def read_mesh(path, progress=None):
     """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), or the surfaces of a
-    scene file (.glb, .gltf, .fbx, .dae, .x, .md5mesh, .md2, .3ds) in their rest pose, into a
-    vtkPolyData."""
+    scene file (.glb, .gltf, .fbx, .x, .md2) in their rest pose, into a vtkPolyData."""
     reader = TriChartIO.tcMeshReader()
     reader.SetFileName(str(path))
     run(reader, "read", progress)

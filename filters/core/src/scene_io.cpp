@@ -19,7 +19,11 @@ namespace tc
 {
 namespace
 {
-constexpr const char* kExtensions = "glb gltf fbx dae x md5mesh md2 3ds";
+// The formats whose Assimp 5.2 importer survived 508 truncated and byte-flipped copies of the
+// shared data's wuson.glb, Testwuson.X, snake .fbx and sydney.md2 without crashing. Not offered:
+// MD5, whose importer crashes on a truncated ffflag.md5mesh or a misspelled keyword in it; 3DS
+// and COLLADA, which no file here tests.
+constexpr const char* kExtensions = "glb gltf fbx x md2";
 
 /// Forwards Assimp's progress to a tc::Progress; an abort becomes Assimp's "stop reading"
 /// (an exception must not cross Assimp's code).

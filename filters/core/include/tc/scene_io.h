@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file scene_io.h
-/// Scene formats (glTF, FBX, COLLADA, DirectX X, MD5, MD2, 3DS) read through Assimp: the
-/// surfaces of a skinned or animated character, in its rest pose, as one polygon soup.
+/// Scene formats (glTF, FBX, DirectX X, MD2) read through Assimp: the surfaces of a skinned or
+/// animated character, in its rest pose, as one polygon soup.
 #pragma once
 
 #include "tc/mesh.h"
@@ -40,7 +40,7 @@ bool isSceneFile(const std::string& path);
 /// Polygons keep their corner count (tc::prepareMesh triangulates); points and lines are
 /// skipped and counted.
 ///
-/// @param[in] path      the file (and, for glTF and MD5, the files it refers to beside it)
+/// @param[in] path      the file (and, for glTF, the files it refers to beside it)
 /// @param[in] progress  reported while Assimp reads; may abort (tc::Aborted)
 /// @throws tc::InputError  for a missing file, an extension none of sceneExtensions(), a file
 ///   Assimp cannot parse (its message is kept), or a scene without a polygon
