@@ -232,6 +232,35 @@ QStringList tcViewerWindow::StageNames()
   return names;
 }
 
+QString tcViewerWindow::ClosedManifoldHint() const
+{
+  tcMeshPreparation* p = this->Preparation;
+  QStringList fixes;
+  if (!p->GetSplitNonManifold() && p->GetNonManifoldEdges() + p->GetNonManifoldVertices() > 0)
+  {
+    fixes << QString("check SplitNonManifold (%1 non-manifold edges, %2 vertices)")
+               .arg(p->GetNonManifoldEdges())
+               .arg(p->GetNonManifoldVertices());
+  }
+  if (p->GetBoundaryEdges() > 0)
+  {
+    fixes << (p->GetFillHoles()
+        ? QString("raise MaxHoleEdges (%1 holes left open)").arg(p->GetOpenHoles())
+        : QString("check FillHoles (%1 boundary edges)").arg(p->GetBoundaryEdges()));
+  }
+  if (p->GetNonOrientableComponents() > 0)
+  {
+    fixes << QString("repair %1 non-orientable components in a mesh editor")
+               .arg(p->GetNonOrientableComponents());
+  }
+  if (!p->GetOrient())
+  {
+    fixes << "check Orient";
+  }
+  return "<b>Not a closed, oriented manifold</b>: the base complex will refuse it; " +
+    fixes.join("; ") + ", then Apply.";
+}
+
 bool tcViewerWindow::IsAtlasFile(const QString& path)
 {
   // By extension first, so that a damaged .exr is reported by the atlas reader (which says what
@@ -573,6 +602,11 @@ QWidget* tcViewerWindow::BuildPreparationPanel()
   this->FillHoles = new QCheckBox(w);
   this->FillHoles->setChecked(this->Preparation->GetFillHoles());
   form->addRow("FillHoles", this->FillHoles);
+  this->MaxHoleEdges = new QSpinBox(w);
+  this->MaxHoleEdges->setRange(3, 1000000);
+  this->MaxHoleEdges->setValue(static_cast<int>(this->Preparation->GetMaxHoleEdges()));
+  this->MaxHoleEdges->setToolTip("The largest hole FillHoles closes, in boundary edges");
+  form->addRow("MaxHoleEdges", this->MaxHoleEdges);
   this->RemoveSlivers = new QCheckBox(w);
   this->RemoveSlivers->setChecked(this->Preparation->GetRemoveSlivers());
   this->RemoveSlivers->setToolTip("Collapse needles and flip caps (a scan's slivers)");
@@ -874,6 +908,7 @@ void tcViewerWindow::PushParameters()
   this->Preparation->SetOrient(this->Orient->isChecked());
   this->Preparation->SetSplitNonManifold(this->SplitNonManifold->isChecked());
   this->Preparation->SetFillHoles(this->FillHoles->isChecked());
+  this->Preparation->SetMaxHoleEdges(this->MaxHoleEdges->value());
   this->Preparation->SetRemoveSlivers(this->RemoveSlivers->isChecked());
   this->Curvature->SetMinNeighbors(this->MinNeighbors->value());
   this->Curvature->SetMaxRings(this->MaxRings->value());
@@ -1119,6 +1154,10 @@ bool tcViewerWindow::ShowStage(int stage)
     // The folder is noise in a narrow panel; the file name says which file it is.
     QString text = QString(report).replace(this->FileName, QFileInfo(this->FileName).fileName());
     info += "<br><pre>" + text.toHtmlEscaped() + "</pre>";
+  }
+  if (stage == PreparationStage && !this->Preparation->GetClosedManifold())
+  {
+    info += "<br>" + this->ClosedManifoldHint();
   }
   const char* const lineNames[] = { "", "", "crest lines", "boundary polylines", "feature lines",
     "base edges", "paths", "", "", "" };

@@ -166,6 +166,9 @@ protected:
 private:
   void BuildUi();
   QWidget* BuildPreparationPanel();
+  /// What to check in the preparation panel so that the base complex takes the prepared mesh
+  /// (shown in the preparation stage's summary when it is no closed, oriented manifold).
+  QString ClosedManifoldHint() const;
   QWidget* BuildCurvaturePanel();
   QWidget* BuildClusteringPanel();
   QWidget* BuildRefinementPanel();
@@ -257,6 +260,7 @@ private:
   QCheckBox* Orient = nullptr;
   QCheckBox* SplitNonManifold = nullptr;
   QCheckBox* FillHoles = nullptr;
+  QSpinBox* MaxHoleEdges = nullptr;
   QCheckBox* RemoveSlivers = nullptr;
   QSpinBox* MinNeighbors = nullptr;
   QSpinBox* MaxRings = nullptr;

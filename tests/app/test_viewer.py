@@ -287,3 +287,21 @@ def test_untraceable_paths_are_built_again_without_slivers(tmp_path):
     # A mesh that traces as it is gets no note.
     r = viewer(BUNNY, "--stage", "patches", "--screenshot", tmp_path / "bunny.png")
     assert r.returncode == 0 and "Note:" not in r.stdout, r.stdout
+
+
+def test_preparation_says_what_to_check_for_a_surface_the_base_complex_refuses(tmp_path):
+    # The bundled bunny with one triangle taken out: a hole of 3 boundary edges.
+    lines = BUNNY.read_text().split("\n")
+    points, faces = map(int, lines[1].split()[:2])
+    lines[1] = f"{points} {faces - 1} 0"
+    del lines[2 + points]
+    mesh = tmp_path / "holed.off"
+    mesh.write_text("\n".join(lines))
+    r = viewer(mesh, "--stage", "preparation", "--screenshot", tmp_path / "p.png")
+    assert r.returncode == 0, r.stderr
+    text = summary(r.stdout, "Preparation")
+    assert "Not a closed, oriented manifold" in text, text
+    assert "check FillHoles (3 boundary edges)" in text, text
+    # The bunny as it is needs nothing.
+    r = viewer(BUNNY, "--stage", "preparation", "--screenshot", tmp_path / "b.png")
+    assert "Not a closed" not in summary(r.stdout, "Preparation")
