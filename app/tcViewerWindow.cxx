@@ -603,7 +603,8 @@ QWidget* tcViewerWindow::BuildPreparationPanel()
   this->FillHoles->setChecked(this->Preparation->GetFillHoles());
   form->addRow("FillHoles", this->FillHoles);
   this->MaxHoleEdges = new QSpinBox(w);
-  this->MaxHoleEdges->setRange(3, 1000000);
+  this->MaxHoleEdges->setRange(0, 10000000);
+  this->MaxHoleEdges->setSpecialValueText("any size"); // 0
   this->MaxHoleEdges->setValue(static_cast<int>(this->Preparation->GetMaxHoleEdges()));
   this->MaxHoleEdges->setToolTip("The largest hole FillHoles closes, in boundary edges");
   form->addRow("MaxHoleEdges", this->MaxHoleEdges);

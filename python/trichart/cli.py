@@ -196,7 +196,8 @@ def main(argv=None):
                         "with faired patches first: the pipeline needs closed surfaces, scans "
                         "often are not")
     p.add_argument("--max-hole-edges", type=int, default=1000,
-                   help="largest hole --fill-holes closes, in boundary edges (default 1000)")
+                   help="largest hole --fill-holes closes, in boundary edges (default 1000; "
+                        "0: any size)")
     p.add_argument("--remove-slivers", action="store_true",
                    help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
                         "times the shortest) in the preparation: scans often have thousands, "
@@ -229,7 +230,8 @@ def main(argv=None):
                    help="close holes of up to --max-hole-edges boundary edges with faired "
                         "patches")
     p.add_argument("--max-hole-edges", type=int, default=1000,
-                   help="largest hole --fill-holes closes, in boundary edges (default 1000)")
+                   help="largest hole --fill-holes closes, in boundary edges (default 1000; "
+                        "0: any size)")
     p.add_argument("--remove-slivers", action="store_true",
                    help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
                         "times the shortest)")
@@ -242,8 +244,10 @@ def main(argv=None):
             parser.error(f"--crease-angle must be 0 .. 180 degrees, not {args.crease_angle}")
         if not 0.0 <= args.max_error <= 1.0:
             parser.error(f"--max-error must be 0 .. 1, not {args.max_error}")
-    if args.command in ("build", "prepare") and args.max_hole_edges < 3:
-        parser.error(f"--max-hole-edges must be 3 or more, not {args.max_hole_edges}")
+    if args.command in ("build", "prepare") and (args.max_hole_edges < 0 or
+                                                 0 < args.max_hole_edges < 3):
+        parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "
+                     f"{args.max_hole_edges}")
 
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()

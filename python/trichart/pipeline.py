@@ -133,7 +133,7 @@ def _closed_manifold_check(f):
                             count(f.GetBoundaryEdges(), "boundary edge", "boundary edges") +
                             " in all (FillHoles closes holes of up to "
                             f"MaxHoleEdges = {f.GetMaxHoleEdges()} edges with a manifold "
-                            "patch: raise it, trichart build --max-hole-edges)")
+                            "patch: raise it, 0 for any size, trichart build --max-hole-edges)")
     if not f.GetOrient():
         problems.append("orientation unchecked (turn Orient on)")
     raise TriChartError("prepare: the prepared mesh is not a closed, oriented manifold, which "
