@@ -70,6 +70,7 @@
 #include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
@@ -1508,7 +1509,27 @@ void tcViewerWindow::Display(vtkPolyData* surface, vtkPolyData* lines, vtkPolyDa
 {
   this->Shown = vtkSmartPointer<vtkPolyData>::New();
   this->Shown->ShallowCopy(surface);
-  this->SurfaceMapper->SetInputData(this->Shown);
+  if (this->CurrentStage >= CurvatureStage && this->CurrentStage <= PatchesStage &&
+    surface->GetPointData()->GetNormals() && surface->GetNumberOfPolys() > 0)
+  {
+    // These stages' Normals are fitted across creases, which shades a CAD edge as a dark band:
+    // draw with normals split where faces meet at 45 degrees or more (the crease angle of the
+    // geometry images' error). What is exported stays the stage's own data. (The atlas and its
+    // reconstruction are drawn with the atlas's normals, one-sided along feature lines.)
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(this->Shown);
+    normals->SetFeatureAngle(45.0);
+    normals->SplittingOn();
+    normals->ConsistencyOff();
+    normals->AutoOrientNormalsOff();
+    normals->ComputeCellNormalsOff();
+    normals->Update();
+    this->SurfaceMapper->SetInputData(normals->GetOutput());
+  }
+  else
+  {
+    this->SurfaceMapper->SetInputData(this->Shown);
+  }
   this->SurfaceActor->VisibilityOn();
   this->HasLines = lines != nullptr;
   if (lines)

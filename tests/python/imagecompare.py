@@ -38,3 +38,23 @@ def compare_with_baseline(candidate, baseline, threshold=0.05):
         w.Write()
         return False, f"differs from {baseline} by {error:.4f} > {threshold}; see {keep}"
     return True, error
+
+
+def differing_pixels(candidate, baseline, level):
+    """Pixels whose red, green or blue differs by more than `level` (of 255) between two PNGs
+    of the same size: stricter than vtkImageDifference, whose threshold hides shading changes
+    of a few tens of levels."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    images = []
+    for path in (candidate, baseline):
+        r = vtkPNGReader()
+        r.SetFileName(str(path))
+        r.Update()
+        dims = r.GetOutput().GetDimensions()
+        pixels = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())
+        images.append(pixels.reshape(dims[1], dims[0], -1)[:, :, :3].astype(int))
+    if images[0].shape != images[1].shape:
+        raise ValueError(f"{candidate} and {baseline} differ in size")
+    return int((numpy.abs(images[0] - images[1]).max(axis=2) > level).sum())
