@@ -111,6 +111,11 @@ def cmd_build(args):
           f"input triangle")
     if result["retried"]:
         print(f"  note: {result['retried']}")
+    # What a scene file held beyond its surfaces (bones, animations), from the reader's report.
+    field = result["mesh"].GetFieldData().GetAbstractArray("ReaderReport")  # a line per value
+    for line in [field.GetValue(i) for i in range(field.GetNumberOfValues())][2:] if field else []:
+        if not line.startswith(("point array", "cell array")):
+            print(f"  read: {line}")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():
