@@ -6,6 +6,7 @@
 #include "tc/array_names.h"
 #include "tc/errors.h"
 #include "tc/off_io.h"
+#include "tc/ply_io.h"
 #include "tc/scene_io.h"
 
 #include <vtkCellData.h>
@@ -18,13 +19,10 @@
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkObjectFactory.h>
-#include <vtkPLYReader.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkXMLPolyDataReader.h>
-
-#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -70,33 +68,6 @@ std::string FormatOf(const std::string& fileName)
 std::string Count(int64_t n, const char* one, const char* many)
 {
   return std::to_string(n) + " " + (n == 1 ? one : many);
-}
-
-/// Inflates a whole gzip file into memory (vtkPLYReader reads from a string).
-bool Gunzip(const std::string& fileName, std::string& data, std::string& error)
-{
-  gzFile file = gzopen(fileName.c_str(), "rb");
-  if (!file)
-  {
-    error = "cannot open '" + fileName + "'";
-    return false;
-  }
-  char buffer[1 << 16];
-  int n = 0;
-  while ((n = gzread(file, buffer, sizeof(buffer))) > 0)
-  {
-    data.append(buffer, n);
-  }
-  int code = Z_OK;
-  const char* message = gzerror(file, &code);
-  const bool ok = n == 0 && code == Z_OK;
-  if (!ok)
-  {
-    error = "'" + fileName + "' is not a valid gzip file (" + message +
-      "); decompress it or re-export it";
-  }
-  gzclose(file);
-  return ok;
 }
 
 /// Observes a VTK reader's error events so that their text can be reported as ours.
@@ -207,11 +178,14 @@ int tcMeshReader::RequestData(
       error = e.what();
     }
   }
-  else if (format == "off")
+  else if (format == "off" || format == "ply" || format == "ply.gz")
   {
+    // The core readers; for PLY tc::readPLY, not vtkPLYReader, which crashes on truncated or
+    // damaged files.
     try
     {
-      const tc::PolygonSoup soup = tc::readOFF(this->FileName);
+      const tc::PolygonSoup soup =
+        format == "off" ? tc::readOFF(this->FileName) : tc::readPLY(this->FileName);
       mesh = vtkSmartPointer<vtkPolyData>::New();
       tcvtk::FromPolygonSoup(soup, mesh);
     }
@@ -219,26 +193,6 @@ int tcMeshReader::RequestData(
     {
       error = e.what();
     }
-  }
-  else if (format == "ply" || format == "ply.gz")
-  {
-    vtkNew<vtkPLYReader> ply;
-    if (format == "ply.gz")
-    {
-      std::string data;
-      if (!Gunzip(this->FileName, data, error))
-      {
-        vtkErrorMacro(<< error);
-        return 0;
-      }
-      ply->ReadFromInputStringOn();
-      ply->SetInputString(data);
-    }
-    else
-    {
-      ply->SetFileName(this->FileName.c_str());
-    }
-    reader = ply;
   }
   else if (format == "obj")
   {

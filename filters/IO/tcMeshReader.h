@@ -6,7 +6,8 @@
  * Assimp, choosing the format by the file name's extension.
  *
  * The output is the file's polygons with their point and cell arrays, unchanged; cleaning is
- * tcMeshPreparation's job. A scene file gives every mesh its nodes place, with their
+ * tcMeshPreparation's job. PLY files are read by tc::readPLY (positions and faces; other
+ * properties are skipped), since VTK's PLY reader crashes on truncated or damaged files. A scene file gives every mesh its nodes place, with their
  * transforms, in the rest pose, and a cell array "SceneMeshId"; its bones and animations are
  * counted in the report, not applied (tc::readScene). What was read (format, points, polygons, arrays) is in GetReport()
  * and in the field array "ReaderReport". A missing file, an unknown extension or a file that
