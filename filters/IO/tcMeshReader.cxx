@@ -6,7 +6,7 @@
 #include "tc/array_names.h"
 #include "tc/errors.h"
 #include "tc/off_io.h"
-#include "tc/ply_io.h"
+#include "tc/soup_io.h"
 #include "tc/scene_io.h"
 
 #include <vtkCellData.h>
@@ -17,7 +17,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
-#include <vtkOBJReader.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -178,14 +177,15 @@ int tcMeshReader::RequestData(
       error = e.what();
     }
   }
-  else if (format == "off" || format == "ply" || format == "ply.gz")
+  else if (format == "off" || format == "ply" || format == "ply.gz" || format == "obj")
   {
-    // The core readers; for PLY tc::readPLY, not vtkPLYReader, which crashes on truncated or
-    // damaged files.
+    // The core readers; for PLY and OBJ tc::readPLY and tc::readOBJ, not vtkPLYReader and
+    // vtkOBJReader, which crash on truncated or damaged files.
     try
     {
-      const tc::PolygonSoup soup =
-        format == "off" ? tc::readOFF(this->FileName) : tc::readPLY(this->FileName);
+      const tc::PolygonSoup soup = format == "off" ? tc::readOFF(this->FileName)
+        : format == "obj"                          ? tc::readOBJ(this->FileName)
+                                                   : tc::readPLY(this->FileName);
       mesh = vtkSmartPointer<vtkPolyData>::New();
       tcvtk::FromPolygonSoup(soup, mesh);
     }
@@ -193,12 +193,6 @@ int tcMeshReader::RequestData(
     {
       error = e.what();
     }
-  }
-  else if (format == "obj")
-  {
-    vtkNew<vtkOBJReader> obj;
-    obj->SetFileName(this->FileName.c_str());
-    reader = obj;
   }
   else if (format == "stl")
   {

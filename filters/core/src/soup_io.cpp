@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "tc/ply_io.h"
+#include "tc/soup_io.h"
 
 #include "tc/errors.h"
 
+#include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/Simple_cartesian.h>
 
@@ -49,6 +50,49 @@ std::string gunzip(const std::string& path)
       "); decompress it or re-export it");
   }
   return data;
+}
+
+using Point = CGAL::Simple_cartesian<double>::Point_3;
+
+/// The points and faces a CGAL reader gave, as a soup whose every face has 3 or more corners
+/// that exist.
+PolygonSoup toSoup(const std::string& path, const std::vector<Point>& points,
+  const std::vector<std::vector<std::size_t>>& faces)
+{
+  if (faces.empty())
+  {
+    throw InputError("'" + path + "' has no faces (" + std::to_string(points.size()) +
+      " vertices): a point cloud is no surface");
+  }
+  PolygonSoup soup;
+  soup.points.reserve(3 * points.size());
+  for (const Point& p : points)
+  {
+    soup.points.insert(soup.points.end(), { p.x(), p.y(), p.z() });
+  }
+  soup.connectivity.reserve(3 * faces.size());
+  soup.offsets.reserve(faces.size() + 1);
+  std::vector<int64_t> ids;
+  for (size_t f = 0; f < faces.size(); ++f)
+  {
+    if (faces[f].size() < 3)
+    {
+      throw InputError("'" + path + "': face " + std::to_string(f) + " has " +
+        std::to_string(faces[f].size()) + " corners; a face needs 3 or more");
+    }
+    ids.assign(faces[f].begin(), faces[f].end());
+    for (const int64_t id : ids)
+    {
+      if (id < 0 || id >= soup.numPoints())
+      {
+        throw InputError("'" + path + "': face " + std::to_string(f) + " refers to vertex " +
+          std::to_string(id) + ", and the file has " + std::to_string(soup.numPoints()) +
+          " (a damaged file?)");
+      }
+    }
+    soup.addPolygon(ids.data(), static_cast<int64_t>(ids.size()));
+  }
+  return soup;
 }
 
 /// Checks the header line by line, so that CGAL's reader (which assumes a well-formed header and
@@ -159,7 +203,6 @@ PolygonSoup readPLY(const std::string& path)
   }
   checkHeader(path, bytes);
 
-  using Point = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   std::istringstream in(bytes);
@@ -182,40 +225,34 @@ PolygonSoup readPLY(const std::string& path)
       " faces were read before the data stopped matching it (a truncated or damaged file, or "
       "an unsupported layout)");
   }
-  if (faces.empty())
-  {
-    throw InputError("'" + path + "' has no faces (" + std::to_string(points.size()) +
-      " vertices): a point cloud is no surface");
-  }
+  return toSoup(path, points, faces);
+}
 
-  PolygonSoup soup;
-  soup.points.reserve(3 * points.size());
-  for (const Point& p : points)
+PolygonSoup readOBJ(const std::string& path)
+{
+  std::ifstream file(path, std::ios::binary);
+  if (!file.good())
   {
-    soup.points.insert(soup.points.end(), { p.x(), p.y(), p.z() });
+    throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
   }
-  soup.connectivity.reserve(3 * faces.size());
-  soup.offsets.reserve(faces.size() + 1);
-  std::vector<int64_t> ids;
-  for (size_t f = 0; f < faces.size(); ++f)
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  bool ok = false;
+  try
   {
-    if (faces[f].size() < 3)
-    {
-      throw InputError("'" + path + "': face " + std::to_string(f) + " has " +
-        std::to_string(faces[f].size()) + " corners; a face needs 3 or more");
-    }
-    ids.assign(faces[f].begin(), faces[f].end());
-    for (const int64_t id : ids)
-    {
-      if (id < 0 || id >= soup.numPoints())
-      {
-        throw InputError("'" + path + "': face " + std::to_string(f) + " refers to vertex " +
-          std::to_string(id) + ", and the file has " + std::to_string(soup.numPoints()) +
-          " (a damaged file?)");
-      }
-    }
-    soup.addPolygon(ids.data(), static_cast<int64_t>(ids.size()));
+    ok = CGAL::IO::read_OBJ(file, points, faces, CGAL::parameters::verbose(false));
   }
-  return soup;
+  catch (const std::exception& e)
+  {
+    throw InputError("cannot read '" + path + "' as OBJ: " + e.what());
+  }
+  if (!ok && !faces.empty())
+  {
+    throw InputError("cannot read '" + path + "' as OBJ: " + std::to_string(points.size()) +
+      " vertices and " + std::to_string(faces.size()) +
+      " faces were read before a line that is no OBJ, or a face with a vertex the file does not "
+      "have (a truncated or damaged file?)");
+  }
+  return toSoup(path, points, faces);
 }
 } // namespace tc

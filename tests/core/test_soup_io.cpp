@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/errors.h"
-#include "tc/ply_io.h"
+#include "tc/soup_io.h"
 
 #include "temp_folder.h"
 #include "test_data.h"
@@ -19,8 +19,8 @@
 
 namespace
 {
-/// PLY files in a fresh folder per test.
-class PlyFiles : public tctest::TempFolderTest
+/// PLY and OBJ files in a fresh folder per test.
+class SoupFiles : public tctest::TempFolderTest
 {
 protected:
   /// The message of the tc::InputError readPLY throws for `bytes` ("" if it reads).
@@ -101,7 +101,7 @@ std::string squarePly(const std::string& format)
 }
 } // namespace
 
-TEST_F(PlyFiles, AsciiAndBinaryOfBothByteOrdersReadTheSameMesh)
+TEST_F(SoupFiles, AsciiAndBinaryOfBothByteOrdersReadTheSameMesh)
 {
   for (const char* format : { "ascii", "binary_little_endian", "binary_big_endian" })
   {
@@ -115,7 +115,7 @@ TEST_F(PlyFiles, AsciiAndBinaryOfBothByteOrdersReadTheSameMesh)
   }
 }
 
-TEST_F(PlyFiles, GzipCompressedFilesAreInflatedFirst)
+TEST_F(SoupFiles, GzipCompressedFilesAreInflatedFirst)
 {
   const std::string raw = squarePly("binary_little_endian");
   const std::string path = file("square.ply.gz");
@@ -126,7 +126,7 @@ TEST_F(PlyFiles, GzipCompressedFilesAreInflatedFirst)
   EXPECT_TRUE(mentions(readError("not gzip data", "broken.ply.gz"), "is not a valid gzip file"));
 }
 
-TEST_F(PlyFiles, BadFilesAreRefusedWithWhatIsWrong)
+TEST_F(SoupFiles, BadFilesAreRefusedWithWhatIsWrong)
 {
   EXPECT_TRUE(mentions(readError("OFF\n3 1 0\n"), "does not start with 'ply'"));
   EXPECT_TRUE(mentions(readError(""), "does not start with 'ply'"));
@@ -145,7 +145,7 @@ TEST_F(PlyFiles, BadFilesAreRefusedWithWhatIsWrong)
   EXPECT_TRUE(mentions(readError(squarePly("ascii"), "missing/none.ply"), "cannot open"));
 }
 
-TEST_F(PlyFiles, DamagedCopiesOfAScanAreRefusedOrReadNeverCrash)
+TEST_F(SoupFiles, DamagedCopiesOfAScanAreRefusedOrReadNeverCrash)
 {
   // VTK's PLY reader crashed on 44 of 324 truncated or byte-flipped files; every copy here is
   // read into faces that refer to existing vertices, or refused with tc::InputError.
@@ -201,5 +201,92 @@ TEST_F(PlyFiles, DamagedCopiesOfAScanAreRefusedOrReadNeverCrash)
     }
   }
   std::cout << "[ figures  ] " << refused << " of " << tried << " damaged copies refused\n";
+  EXPECT_GT(refused, 0);
+}
+
+TEST_F(SoupFiles, ObjFacesTakeTheFirstIndexOfEachCornerAndCountNegativeOnesBack)
+{
+  const tc::PolygonSoup soup = tc::readOBJ(write("tet.obj",
+    "# a tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvn 0 0 1\ng part\n"
+    "f -4 -2 -3\nf 1/1 2/1 4/1\nf 1//1 4//1 3//1\nf 2/1/1 3/1/1 4/1/1\n"));
+  ASSERT_EQ(soup.numPoints(), 4);
+  EXPECT_EQ(soup.connectivity, (std::vector<int64_t>{ 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3 }));
+  EXPECT_EQ(soup.points[3 * 3 + 2], 1.0);
+}
+
+TEST_F(SoupFiles, BadObjFilesAreRefusedWithWhatIsWrong)
+{
+  const auto error = [this](const std::string& text)
+  {
+    try
+    {
+      tc::readOBJ(write("bad.obj", text));
+    }
+    catch (const tc::InputError& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_TRUE(mentions(error("v 0 0 0\nv 1 0 0\nf 1 2 9\n"), "cannot read")) << error("f 1 2 9");
+  EXPECT_TRUE(mentions(error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n"), "refers to vertex"));
+  EXPECT_TRUE(mentions(error("v 0 0 0\nv 1 0 0\nf 1 2\n"), "has 2 corners"));
+  EXPECT_TRUE(mentions(error("v 0 0 0\nv 1 0 0\n"), "has no faces (2 vertices)"));
+  EXPECT_TRUE(mentions(error(""), "has no faces"));
+}
+
+TEST_F(SoupFiles, DamagedCopiesOfAnObjAreRefusedOrReadNeverCrash)
+{
+  // vtkOBJReader crashed on "f 1207 1396/1189" (a texture index the file does not have).
+  std::string obj;
+  for (int i = 0; i < 10; ++i)
+  {
+    for (int j = 0; j < 10; ++j)
+    {
+      obj += "v " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(i * j) +
+        "\nvt 0.5 0.5\n";
+    }
+  }
+  for (int i = 0; i < 9; ++i)
+  {
+    for (int j = 0; j < 9; ++j)
+    {
+      const int a = 10 * i + j + 1;
+      obj += "f " + std::to_string(a) + "/1 " + std::to_string(a + 10) + "/2 " +
+        std::to_string(a + 11) + "/3 " + std::to_string(a + 1) + "/4\n";
+    }
+  }
+  std::mt19937 random(9);
+  int tried = 0, refused = 0;
+  for (int k = 0; k < 120; ++k)
+  {
+    std::string copy = obj;
+    if (k % 4 == 3)
+    {
+      copy = copy.substr(0, random() % copy.size());
+    }
+    else
+    {
+      for (int i = 0; i < (k % 4 == 0 ? 1 : k % 4 == 1 ? 4 : 32); ++i)
+      {
+        copy[random() % copy.size()] = static_cast<char>(random() % 256);
+      }
+    }
+    ++tried;
+    try
+    {
+      const tc::PolygonSoup soup = tc::readOBJ(write("damaged.obj", copy));
+      for (const int64_t id : soup.connectivity)
+      {
+        ASSERT_GE(id, 0);
+        ASSERT_LT(id, soup.numPoints());
+      }
+    }
+    catch (const tc::InputError&)
+    {
+      ++refused;
+    }
+  }
+  std::cout << "[ figures  ] " << refused << " of " << tried << " damaged OBJ copies refused\n";
   EXPECT_GT(refused, 0);
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-/// @file ply_io.h
-/// Stanford PLY input (ASCII and binary, also gzip-compressed), through CGAL's PLY reader, with
-/// every face checked: VTK's PLY reader crashes on truncated or damaged files.
+/// @file soup_io.h
+/// Stanford PLY (ASCII and binary, also gzip-compressed) and Wavefront OBJ input through CGAL's
+/// readers, with every face checked: VTK's PLY and OBJ readers crash on damaged files.
 #pragma once
 
 #include "tc/mesh.h"
@@ -21,4 +21,15 @@ namespace tc
 ///   declares and how many were read), a face with fewer than 3 corners or a corner out of
 ///   range, or a file without faces
 PolygonSoup readPLY(const std::string& path);
+
+/// Reads the vertices (v) and faces (f, with their first index of each corner: "f 1/4/2 ..."
+/// gives 1; negative indices count back from the last vertex) of an OBJ file. Texture
+/// coordinates, normals, groups and materials are skipped.
+///
+/// @param[in] path  file to read
+/// @return  #V points and #F polygons in file order
+/// @throws tc::InputError  naming the file, for a missing or unreadable file, a file CGAL's
+///   reader refuses (with the counts read), a face with fewer than 3 corners or a corner out of
+///   range, or a file without faces
+PolygonSoup readOBJ(const std::string& path);
 } // namespace tc
