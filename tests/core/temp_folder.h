@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file temp_folder.h
-/// A GoogleTest fixture for tests that write files: a fresh, empty folder per test.
+/// For tests that write files: a GoogleTest fixture with a fresh, empty folder per test, and
+/// damaged copies of a file's bytes for the readers' robustness tests.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -8,7 +9,9 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
+#include <vector>
 
 namespace tctest
 {
@@ -39,4 +42,26 @@ protected:
 
   std::filesystem::path Folder;
 };
+
+/// Damaged copies of `bytes`: cut at 5, 30, 50, 77 and 99% of their length, and `flipped`
+/// copies with 1, 4 or 32 bytes replaced at random (seeded: the same copies every run).
+inline std::vector<std::string> damagedCopies(const std::string& bytes, unsigned seed, int flipped)
+{
+  std::vector<std::string> copies;
+  for (const double fraction : { 0.05, 0.3, 0.5, 0.77, 0.99 })
+  {
+    copies.push_back(bytes.substr(0, static_cast<size_t>(fraction * bytes.size())));
+  }
+  std::mt19937 random(seed);
+  for (int k = 0; k < flipped; ++k)
+  {
+    std::string copy = bytes;
+    for (int i = 0; i < (k % 3 == 0 ? 1 : k % 3 == 1 ? 4 : 32); ++i)
+    {
+      copy[random() % copy.size()] = static_cast<char>(random() % 256);
+    }
+    copies.push_back(copy);
+  }
+  return copies;
+}
 } // namespace tctest

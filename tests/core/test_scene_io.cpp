@@ -262,7 +262,6 @@ TEST_F(SceneFiles, DamagedCopiesOfTheSharedScenesAreRefusedOrReadNeverCrash)
 {
   // Truncated and byte-flipped copies of every format offered: each is read into a valid soup
   // or refused with tc::InputError (a crash fails the whole test program).
-  std::mt19937 random(11);
   int tried = 0, refused = 0;
   for (const char* name : { "skinned/wuson/wuson.glb", "skinned/wuson/Testwuson.X",
          "skinned/snake_fbx/animation_with_skeleton.fbx", "skinned/md2/sydney.md2" })
@@ -275,21 +274,7 @@ TEST_F(SceneFiles, DamagedCopiesOfTheSharedScenesAreRefusedOrReadNeverCrash)
     std::ifstream in(path, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string ext = path.substr(path.rfind('.'));
-    std::vector<std::string> copies;
-    for (const double fraction : { 0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99 })
-    {
-      copies.push_back(bytes.substr(0, static_cast<size_t>(fraction * bytes.size())));
-    }
-    for (int k = 0; k < 24; ++k)
-    {
-      std::string copy = bytes;
-      const int flips = k % 3 == 0 ? 1 : k % 3 == 1 ? 4 : 32;
-      for (int i = 0; i < flips; ++i)
-      {
-        copy[random() % copy.size()] = static_cast<char>(random() % 256);
-      }
-      copies.push_back(copy);
-    }
+    const std::vector<std::string> copies = tctest::damagedCopies(bytes, 11, 24);
     for (const std::string& copy : copies)
     {
       ++tried;

@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstring>
 #include <iostream>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -35,6 +34,30 @@ protected:
       return e.what();
     }
     return "";
+  }
+
+  /// Reads every copy with `read` as `name`: each gives faces whose corners exist, or is
+  /// refused with tc::InputError (a crash fails the test program). Returns the refused count.
+  template <typename Read>
+  int refusedCopies(const std::vector<std::string>& copies, const std::string& name, Read read)
+  {
+    int refused = 0;
+    for (const std::string& copy : copies)
+    {
+      try
+      {
+        const tc::PolygonSoup soup = read(write(name, copy));
+        for (const int64_t id : soup.connectivity)
+        {
+          EXPECT_TRUE(id >= 0 && id < soup.numPoints()) << id;
+        }
+      }
+      catch (const tc::InputError&)
+      {
+        ++refused;
+      }
+    }
+    return refused;
   }
 };
 
@@ -164,41 +187,12 @@ TEST_F(SoupFiles, DamagedCopiesOfAScanAreRefusedOrReadNeverCrash)
     gzclose(gz);
     sources.push_back(bytes);
   }
-  std::mt19937 random(5);
   int tried = 0, refused = 0;
   for (const std::string& bytes : sources)
   {
-    std::vector<std::string> copies;
-    for (const double fraction : { 0.05, 0.3, 0.5, 0.77, 0.99 })
-    {
-      copies.push_back(bytes.substr(0, static_cast<size_t>(fraction * bytes.size())));
-    }
-    for (int k = 0; k < 30; ++k)
-    {
-      std::string copy = bytes;
-      for (int i = 0; i < (k % 3 == 0 ? 1 : k % 3 == 1 ? 4 : 32); ++i)
-      {
-        copy[random() % copy.size()] = static_cast<char>(random() % 256);
-      }
-      copies.push_back(copy);
-    }
-    for (const std::string& copy : copies)
-    {
-      ++tried;
-      try
-      {
-        const tc::PolygonSoup soup = tc::readPLY(write("damaged.ply", copy));
-        for (const int64_t id : soup.connectivity)
-        {
-          ASSERT_GE(id, 0);
-          ASSERT_LT(id, soup.numPoints());
-        }
-      }
-      catch (const tc::InputError&)
-      {
-        ++refused;
-      }
-    }
+    const std::vector<std::string> copies = tctest::damagedCopies(bytes, 5, 30);
+    tried += static_cast<int>(copies.size());
+    refused += refusedCopies(copies, "damaged.ply", tc::readPLY);
   }
   std::cout << "[ figures  ] " << refused << " of " << tried << " damaged copies refused\n";
   EXPECT_GT(refused, 0);
@@ -256,37 +250,9 @@ TEST_F(SoupFiles, DamagedCopiesOfAnObjAreRefusedOrReadNeverCrash)
         std::to_string(a + 11) + "/3 " + std::to_string(a + 1) + "/4\n";
     }
   }
-  std::mt19937 random(9);
-  int tried = 0, refused = 0;
-  for (int k = 0; k < 120; ++k)
-  {
-    std::string copy = obj;
-    if (k % 4 == 3)
-    {
-      copy = copy.substr(0, random() % copy.size());
-    }
-    else
-    {
-      for (int i = 0; i < (k % 4 == 0 ? 1 : k % 4 == 1 ? 4 : 32); ++i)
-      {
-        copy[random() % copy.size()] = static_cast<char>(random() % 256);
-      }
-    }
-    ++tried;
-    try
-    {
-      const tc::PolygonSoup soup = tc::readOBJ(write("damaged.obj", copy));
-      for (const int64_t id : soup.connectivity)
-      {
-        ASSERT_GE(id, 0);
-        ASSERT_LT(id, soup.numPoints());
-      }
-    }
-    catch (const tc::InputError&)
-    {
-      ++refused;
-    }
-  }
+  const std::vector<std::string> copies = tctest::damagedCopies(obj, 9, 120);
+  const int tried = static_cast<int>(copies.size());
+  const int refused = refusedCopies(copies, "damaged.obj", tc::readOBJ);
   std::cout << "[ figures  ] " << refused << " of " << tried << " damaged OBJ copies refused\n";
   EXPECT_GT(refused, 0);
 }
