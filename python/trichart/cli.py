@@ -167,6 +167,23 @@ def cmd_prepare(args):
     return 0
 
 
+def _add_repair_options(parser):
+    """The preparation's repairs, shared by build and prepare."""
+    parser.add_argument("--split-non-manifold", action="store_true",
+                        help="split non-manifold edges and vertices in the preparation")
+    parser.add_argument("--fill-holes", action="store_true",
+                        help="close the mesh's holes (up to --max-hole-edges boundary edges "
+                             "each) with faired patches: the pipeline needs closed surfaces, "
+                             "scans often are not")
+    parser.add_argument("--max-hole-edges", type=int, default=1000,
+                        help="largest hole --fill-holes closes, in boundary edges (default "
+                             "1000; 0: any size)")
+    parser.add_argument("--remove-slivers", action="store_true",
+                        help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
+                             "times the shortest) in the preparation: scans often have "
+                             "thousands, through which the base edges cannot be traced")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(
         prog="trichart", description="TriChart: triangle-chart geometry images and LOD.")
@@ -194,19 +211,7 @@ def main(argv=None):
                    help="largest chart level, 2^d + 1 samples per side (default 8)")
     p.add_argument("--budget", type=int, default=0,
                    help="total samples at the finest levels (default: the mesh's point count)")
-    p.add_argument("--split-non-manifold", action="store_true",
-                   help="split non-manifold edges and vertices in the preparation")
-    p.add_argument("--fill-holes", action="store_true",
-                   help="close the mesh's holes (up to --max-hole-edges boundary edges each) "
-                        "with faired patches first: the pipeline needs closed surfaces, scans "
-                        "often are not")
-    p.add_argument("--max-hole-edges", type=int, default=1000,
-                   help="largest hole --fill-holes closes, in boundary edges (default 1000; "
-                        "0: any size)")
-    p.add_argument("--remove-slivers", action="store_true",
-                   help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
-                        "times the shortest) in the preparation: scans often have thousands, "
-                        "through which the base edges cannot be traced")
+    _add_repair_options(p)
     p.add_argument("--stretch-iterations", type=int, default=10,
                    help="stretch-reducing passes over each chart's mean-value map, 0 .. 100 "
                         "(default 10; 0: the mean-value map alone)")
@@ -230,16 +235,7 @@ def main(argv=None):
     p.add_argument("-o", "--output", required=True, help="output .vtp file")
     p.add_argument("--merge-tolerance", type=float, default=0.0,
                    help="merge points closer than this fraction of the diagonal")
-    p.add_argument("--split-non-manifold", action="store_true")
-    p.add_argument("--fill-holes", action="store_true",
-                   help="close holes of up to --max-hole-edges boundary edges with faired "
-                        "patches")
-    p.add_argument("--max-hole-edges", type=int, default=1000,
-                   help="largest hole --fill-holes closes, in boundary edges (default 1000; "
-                        "0: any size)")
-    p.add_argument("--remove-slivers", action="store_true",
-                   help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
-                        "times the shortest)")
+    _add_repair_options(p)
     args = parser.parse_args(argv)
     if args.command == "build":
         # The filters clamp these silently; a command line says what is wrong instead.
