@@ -218,9 +218,13 @@ PolygonSoup readPLY(const std::string& path)
   const std::string header = bytes.substr(0, bytes.find("end_header"));
   if (!ok)
   {
+    const auto count = [&header](const char* element, const char* plural)
+    {
+      const long long n = declared(header, element);
+      return n < 0 ? std::string("no ") + element + " element" : std::to_string(n) + " " + plural;
+    };
     throw InputError("cannot read '" + path + "' as PLY: the header declares " +
-      std::to_string(declared(header, "vertex")) + " vertices and " +
-      std::to_string(declared(header, "face")) + " faces, and " +
+      count("vertex", "vertices") + " and " + count("face", "faces") + ", and " +
       std::to_string(points.size()) + " vertices and " + std::to_string(faces.size()) +
       " faces were read before the data stopped matching it (a truncated or damaged file, or "
       "an unsupported layout)");
