@@ -1021,11 +1021,29 @@ TEST(Preparation, HolesOfANonManifoldMeshAreRefusedUntilSplit)
   const std::string error = preparationError(soup, options);
   EXPECT_TRUE(contains(error, "cannot fill holes")) << error;
   EXPECT_TRUE(contains(error, "--split-non-manifold")) << error;
-  // Split off, the fin is a component of its own whose 3-edge loop is closed too.
+  // Split off, the fin is a lone triangle: closing its 3-edge loop would give a flat two-sided
+  // pair, no surface a base complex can cover, so the fragment is dropped.
   options.splitNonManifold = true;
   const tc::PreparationResult r = tc::prepareMesh(soup, options);
   EXPECT_EQ(r.report.filledHoles, 3);
+  EXPECT_EQ(r.report.droppedFragments, 1);
   EXPECT_EQ(r.report.boundaryEdges, 0);
+  EXPECT_EQ(r.report.components, 1);
+  EXPECT_EQ(r.report.closedComponents, 1);
+  EXPECT_TRUE(contains(r.report.text(), "dropped 1 fragment of fewer than 4 triangles"));
+  // The per-element arrays follow the kept points and triangles.
+  EXPECT_EQ(r.inputPointId.size(), static_cast<size_t>(r.mesh.numPoints()));
+  EXPECT_EQ(r.inputCellId.size(), static_cast<size_t>(r.mesh.numTriangles()));
+  EXPECT_EQ(r.componentId.size(), static_cast<size_t>(r.mesh.numTriangles()));
+  for (const int32_t v : r.mesh.triangles)
+  {
+    ASSERT_LT(v, r.mesh.numPoints());
+  }
+  // Without FillHoles the fin stays, as the user's data.
+  options.fillHoles = false;
+  const tc::PreparationResult open = tc::prepareMesh(soup, options);
+  EXPECT_EQ(open.report.droppedFragments, 0);
+  EXPECT_EQ(open.report.components, 2);
 }
 
 namespace

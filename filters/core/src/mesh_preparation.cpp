@@ -951,7 +951,7 @@ bool PreparationReport::changed() const
 {
   return polygonsTriangulated > 0 || mergedPoints > 0 || degenerateFaces > 0 ||
     duplicateFaces > 0 || flippedFaces > 0 || unusedPoints > 0 || splitVertices > 0 ||
-    filledHoles > 0 || sliverPoints > 0 || reshapedTriangles > 0;
+    filledHoles > 0 || droppedFragments > 0 || sliverPoints > 0 || reshapedTriangles > 0;
 }
 
 std::string PreparationReport::text() const
@@ -990,6 +990,9 @@ std::string PreparationReport::text() const
     "filled " + plural(filledHoles, "hole", "holes") + " with " +
       plural(holeTriangles, "triangle", "triangles") + " and " +
       plural(holePoints, "point", "points"));
+  line(droppedFragments,
+    "dropped " + plural(droppedFragments, "fragment", "fragments") +
+      " of fewer than 4 triangles, which no hole filling closes into a surface");
   line(unfairedHoles,
     plural(unfairedHoles, "filled hole", "filled holes") + " left unfaired (flat patch)");
   line(openHoles,
@@ -1299,6 +1302,16 @@ PreparationResult prepareMesh(
     markBoundary(edges, numVertices, result);
   };
 
+  // Keeps the listed points and triangles (increasing ids) of the per-element arrays.
+  auto keepOnly = [](auto& values, const std::vector<int32_t>& kept)
+  {
+    for (size_t i = 0; i < kept.size(); ++i)
+    {
+      values[i] = values[kept[i]];
+    }
+    values.resize(kept.size());
+  };
+
   // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   int64_t nf = numKept;
   if (options.fillHoles)
@@ -1327,6 +1340,63 @@ PreparationResult prepareMesh(
         relink();
       }
     }
+    // A component of fewer than 4 triangles is no closed surface once filled (a lone triangle
+    // becomes a flat two-sided pair, around whose corners no base complex fits): drop it.
+    std::vector<int64_t> size(static_cast<size_t>(report.components), 0);
+    for (int64_t f = 0; f < nf; ++f)
+    {
+      ++size[result.componentId[f]];
+    }
+    std::vector<int32_t> keptTriangles, keptPoints;
+    std::vector<int32_t> newId(numVertices, -1);
+    for (int64_t f = 0; f < nf; ++f)
+    {
+      if (size[result.componentId[f]] >= 4)
+      {
+        keptTriangles.push_back(static_cast<int32_t>(f));
+        for (int c = 0; c < 3; ++c)
+        {
+          newId[tri[3 * f + c]] = 0;
+        }
+      }
+    }
+    if (static_cast<int64_t>(keptTriangles.size()) < nf)
+    {
+      for (int32_t v = 0; v < numVertices; ++v)
+      {
+        if (newId[v] == 0)
+        {
+          newId[v] = static_cast<int32_t>(keptPoints.size());
+          keptPoints.push_back(v);
+        }
+      }
+      for (const int64_t n : size)
+      {
+        report.droppedFragments += n < 4 ? 1 : 0;
+      }
+      std::vector<int32_t> kept(3 * keptTriangles.size());
+      for (size_t i = 0; i < keptTriangles.size(); ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          kept[3 * i + c] = newId[tri[3 * static_cast<size_t>(keptTriangles[i]) + c]];
+        }
+      }
+      tri.swap(kept);
+      std::vector<double>& points = result.mesh.points;
+      for (size_t i = 0; i < keptPoints.size(); ++i)
+      {
+        std::copy_n(&points[3 * static_cast<size_t>(keptPoints[i])], 3, &points[3 * i]);
+      }
+      points.resize(3 * keptPoints.size());
+      keepOnly(result.inputPointId, keptPoints);
+      keepOnly(result.nonManifoldVertex, keptPoints);
+      keepOnly(result.inputCellId, keptTriangles);
+      keepOnly(result.nonManifoldEdge, keptTriangles);
+      numVertices = static_cast<int32_t>(keptPoints.size());
+      nf = static_cast<int64_t>(keptTriangles.size());
+      relink();
+    }
   }
   progress.report(0.9);
 
@@ -1346,18 +1416,10 @@ PreparationResult prepareMesh(
     report.remainingSlivers = removed.remainingSlivers;
     if (removed.collapsedPoints > 0 || removed.reshapedTriangles > 0)
     {
-      auto keep = [](auto& values, const std::vector<int32_t>& kept)
-      {
-        for (size_t i = 0; i < kept.size(); ++i)
-        {
-          values[i] = values[kept[i]];
-        }
-        values.resize(kept.size());
-      };
-      keep(result.inputPointId, removed.keptPoints);
-      keep(result.nonManifoldVertex, removed.keptPoints);
-      keep(result.inputCellId, removed.keptTriangles);
-      keep(result.nonManifoldEdge, removed.keptTriangles);
+      keepOnly(result.inputPointId, removed.keptPoints);
+      keepOnly(result.nonManifoldVertex, removed.keptPoints);
+      keepOnly(result.inputCellId, removed.keptTriangles);
+      keepOnly(result.nonManifoldEdge, removed.keptTriangles);
       numVertices = static_cast<int32_t>(removed.keptPoints.size());
       nf = static_cast<int64_t>(removed.keptTriangles.size());
       relink();

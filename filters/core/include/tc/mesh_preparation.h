@@ -71,6 +71,9 @@ struct PreparationReport
   int64_t unfairedHoles = 0;        ///< filled holes whose patch could not be faired
   int64_t openHoles = 0;            ///< loops fillHoles left open (too long, or no manifold
                                     ///< triangulation, or a non-manifold mesh)
+  int64_t droppedFragments = 0;     ///< with fillHoles: components of fewer than 4 triangles
+                                    ///< dropped (no closed surface; a filled lone triangle
+                                    ///< would be a flat two-sided pair)
   int64_t slivers = 0;              ///< with removeSlivers: caps and needles found
   int64_t sliverPoints = 0;         ///< points collapsed away to remove needles
   int64_t reshapedTriangles = 0;    ///< output triangles with new corners (cap flips)
