@@ -1302,18 +1302,29 @@ PreparationResult prepareMesh(
     markBoundary(edges, numVertices, result);
   };
 
-  // Keeps the listed points and triangles (increasing ids) of the per-element arrays.
-  auto keepOnly = [](auto& values, const std::vector<int32_t>& kept)
-  {
-    for (size_t i = 0; i < kept.size(); ++i)
-    {
-      values[i] = values[kept[i]];
-    }
-    values.resize(kept.size());
-  };
-
   // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   int64_t nf = numKept;
+  // After a repair kept some points and triangles (old ids, ascending): the per-element arrays
+  // follow them, and the edges, components, orientation and boundary are found again.
+  auto follow =
+    [&](const std::vector<int32_t>& keptPoints, const std::vector<int32_t>& keptTriangles)
+  {
+    auto keep = [](auto& values, const std::vector<int32_t>& kept)
+    {
+      for (size_t i = 0; i < kept.size(); ++i)
+      {
+        values[i] = values[kept[i]];
+      }
+      values.resize(kept.size());
+    };
+    keep(result.inputPointId, keptPoints);
+    keep(result.nonManifoldVertex, keptPoints);
+    keep(result.inputCellId, keptTriangles);
+    keep(result.nonManifoldEdge, keptTriangles);
+    numVertices = static_cast<int32_t>(keptPoints.size());
+    nf = static_cast<int64_t>(keptTriangles.size());
+    relink();
+  };
   if (options.fillHoles)
   {
     if (report.boundaryEdges > 0)
@@ -1342,60 +1353,12 @@ PreparationResult prepareMesh(
     }
     // A component of fewer than 4 triangles is no closed surface once filled (a lone triangle
     // becomes a flat two-sided pair, around whose corners no base complex fits): drop it.
-    std::vector<int64_t> size(static_cast<size_t>(report.components), 0);
-    for (int64_t f = 0; f < nf; ++f)
+    const FragmentRemoval fragments =
+      dropFragments(result.mesh, result.componentId, report.components, 4);
+    report.droppedFragments = fragments.fragments;
+    if (fragments.fragments > 0)
     {
-      ++size[result.componentId[f]];
-    }
-    std::vector<int32_t> keptTriangles, keptPoints;
-    std::vector<int32_t> newId(numVertices, -1);
-    for (int64_t f = 0; f < nf; ++f)
-    {
-      if (size[result.componentId[f]] >= 4)
-      {
-        keptTriangles.push_back(static_cast<int32_t>(f));
-        for (int c = 0; c < 3; ++c)
-        {
-          newId[tri[3 * f + c]] = 0;
-        }
-      }
-    }
-    if (static_cast<int64_t>(keptTriangles.size()) < nf)
-    {
-      for (int32_t v = 0; v < numVertices; ++v)
-      {
-        if (newId[v] == 0)
-        {
-          newId[v] = static_cast<int32_t>(keptPoints.size());
-          keptPoints.push_back(v);
-        }
-      }
-      for (const int64_t n : size)
-      {
-        report.droppedFragments += n < 4 ? 1 : 0;
-      }
-      std::vector<int32_t> kept(3 * keptTriangles.size());
-      for (size_t i = 0; i < keptTriangles.size(); ++i)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          kept[3 * i + c] = newId[tri[3 * static_cast<size_t>(keptTriangles[i]) + c]];
-        }
-      }
-      tri.swap(kept);
-      std::vector<double>& points = result.mesh.points;
-      for (size_t i = 0; i < keptPoints.size(); ++i)
-      {
-        std::copy_n(&points[3 * static_cast<size_t>(keptPoints[i])], 3, &points[3 * i]);
-      }
-      points.resize(3 * keptPoints.size());
-      keepOnly(result.inputPointId, keptPoints);
-      keepOnly(result.nonManifoldVertex, keptPoints);
-      keepOnly(result.inputCellId, keptTriangles);
-      keepOnly(result.nonManifoldEdge, keptTriangles);
-      numVertices = static_cast<int32_t>(keptPoints.size());
-      nf = static_cast<int64_t>(keptTriangles.size());
-      relink();
+      follow(fragments.keptPoints, fragments.keptTriangles);
     }
   }
   progress.report(0.9);
@@ -1416,13 +1379,7 @@ PreparationResult prepareMesh(
     report.remainingSlivers = removed.remainingSlivers;
     if (removed.collapsedPoints > 0 || removed.reshapedTriangles > 0)
     {
-      keepOnly(result.inputPointId, removed.keptPoints);
-      keepOnly(result.nonManifoldVertex, removed.keptPoints);
-      keepOnly(result.inputCellId, removed.keptTriangles);
-      keepOnly(result.nonManifoldEdge, removed.keptTriangles);
-      numVertices = static_cast<int32_t>(removed.keptPoints.size());
-      nf = static_cast<int64_t>(removed.keptTriangles.size());
-      relink();
+      follow(removed.keptPoints, removed.keptTriangles);
     }
   }
   report.outputPoints = numVertices;

@@ -243,4 +243,56 @@ SliverRemoval removeSlivers(
   progress.report(1.0);
   return out;
 }
+
+FragmentRemoval dropFragments(TriMesh& mesh, const std::vector<int32_t>& componentId,
+  int64_t numComponents, int64_t minTriangles)
+{
+  FragmentRemoval out;
+  const int64_t nf = mesh.numTriangles();
+  std::vector<int64_t> size(static_cast<size_t>(numComponents), 0);
+  for (int64_t f = 0; f < nf; ++f)
+  {
+    ++size[componentId[f]];
+  }
+  for (const int64_t n : size)
+  {
+    out.fragments += n < minTriangles ? 1 : 0;
+  }
+  if (out.fragments == 0)
+  {
+    return out;
+  }
+  std::vector<int32_t> newId(static_cast<size_t>(mesh.numPoints()), -1);
+  for (int64_t f = 0; f < nf; ++f)
+  {
+    if (size[componentId[f]] >= minTriangles)
+    {
+      out.keptTriangles.push_back(static_cast<int32_t>(f));
+      for (int c = 0; c < 3; ++c)
+      {
+        newId[mesh.triangles[3 * f + c]] = 0;
+      }
+    }
+  }
+  TriMesh kept;
+  for (int32_t v = 0; v < static_cast<int32_t>(newId.size()); ++v)
+  {
+    if (newId[v] == 0)
+    {
+      newId[v] = static_cast<int32_t>(out.keptPoints.size());
+      out.keptPoints.push_back(v);
+      kept.points.insert(kept.points.end(), &mesh.points[3 * static_cast<size_t>(v)],
+        &mesh.points[3 * static_cast<size_t>(v)] + 3);
+    }
+  }
+  for (const int32_t f : out.keptTriangles)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      kept.triangles.push_back(newId[mesh.triangles[3 * static_cast<size_t>(f) + c]]);
+    }
+  }
+  mesh = std::move(kept);
+  return out;
+}
 } // namespace tc
