@@ -81,25 +81,18 @@ def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fi
             max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
             sliver_edge_ratio=10.0, progress=None):
     """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
-    f = _prepared(mesh, merge_tolerance, split_non_manifold, orient, fill_holes, max_hole_edges,
-                  remove_slivers, sliver_angle, sliver_edge_ratio, progress)
+    f = _prepared(mesh, progress, merge_tolerance=merge_tolerance,
+                  split_non_manifold=split_non_manifold, orient=orient, fill_holes=fill_holes,
+                  max_hole_edges=max_hole_edges, remove_slivers=remove_slivers,
+                  sliver_angle=sliver_angle, sliver_edge_ratio=sliver_edge_ratio)
     return _output(f), f.GetReport()
 
 
-def _prepared(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fill_holes=False,
-              max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
-              sliver_edge_ratio=10.0, progress=None):
-    """tcMeshPreparation on `mesh`, run; returns the filter (its output, report and counts)."""
-    f = TriChartPreparation.tcMeshPreparation()
+def _prepared(mesh, progress=None, **options):
+    """tcMeshPreparation on `mesh` with `options` (prepare's, the filter's defaults for those not
+    given), run; returns the filter (its output, report and counts)."""
+    f = _configure(TriChartPreparation.tcMeshPreparation(), options)
     f.SetInputData(mesh)
-    f.SetMergeTolerance(merge_tolerance)
-    f.SetSplitNonManifold(split_non_manifold)
-    f.SetOrient(orient)
-    f.SetFillHoles(fill_holes)
-    f.SetMaxHoleEdges(max_hole_edges)
-    f.SetRemoveSlivers(remove_slivers)
-    f.SetSliverAngle(sliver_angle)
-    f.SetSliverEdgeRatio(sliver_edge_ratio)
     run(f, "prepare", progress)
     return f
 
@@ -114,10 +107,9 @@ def _closed_manifold_check(f):
 
     problems = []
     if not f.GetSplitNonManifold() and f.GetNonManifoldEdges() + f.GetNonManifoldVertices():
-        found = [count(n, f"non-manifold {what}", f"non-manifold {what}s" if what == "edge"
-                       else "non-manifold vertices")
-                 for n, what in ((f.GetNonManifoldEdges(), "edge"),
-                                 (f.GetNonManifoldVertices(), "vertex")) if n]
+        found = [count(n, one, many) for n, one, many in (
+            (f.GetNonManifoldEdges(), "non-manifold edge", "non-manifold edges"),
+            (f.GetNonManifoldVertices(), "non-manifold vertex", "non-manifold vertices")) if n]
         problems.append(" and ".join(found) + " (split them: SplitNonManifold, trichart build "
                         "--split-non-manifold)")
     if f.GetNonOrientableComponents():
