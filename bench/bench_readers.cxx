@@ -7,11 +7,11 @@
 //   tc_bench_readers [mesh ...]   default: the 871K dragon and 1.2M bunny scans, bunny_glmark2
 #include "bench_common.h"
 
+#include "tc/soup_io.h"
+
 #include <vtkLogger.h>
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
-
-#include <zlib.h>
 
 #include <cstdio>
 #include <iostream>
@@ -36,17 +36,8 @@ vtkSmartPointer<vtkAlgorithm> Peer(const std::string& file, double& seconds)
     auto ply = vtkSmartPointer<vtkPLYReader>::New();
     if (EndsWith(file, ".gz"))
     {
-      gzFile gz = gzopen(file.c_str(), "rb");
-      std::string bytes;
-      std::vector<char> buffer(1 << 16);
-      int n = 0;
-      while ((n = gzread(gz, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
-      {
-        bytes.append(buffer.data(), static_cast<size_t>(n));
-      }
-      gzclose(gz);
       ply->ReadFromInputStringOn();
-      ply->SetInputString(bytes);
+      ply->SetInputString(tc::readGzip(file));
     }
     else
     {

@@ -176,16 +176,7 @@ TEST_F(SoupFiles, DamagedCopiesOfAScanAreRefusedOrReadNeverCrash)
   const std::string scan = tctest::sharedData("static_small/dragon_vrip_res4.ply.gz");
   if (!scan.empty())
   {
-    gzFile gz = gzopen(scan.c_str(), "rb");
-    std::string bytes;
-    char buffer[1 << 16];
-    int n = 0;
-    while ((n = gzread(gz, buffer, sizeof(buffer))) > 0)
-    {
-      bytes.append(buffer, static_cast<size_t>(n));
-    }
-    gzclose(gz);
-    sources.push_back(bytes);
+    sources.push_back(tc::readGzip(scan));
   }
   int tried = 0, refused = 0;
   for (const std::string& bytes : sources)

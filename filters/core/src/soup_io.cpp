@@ -18,40 +18,6 @@ namespace tc
 {
 namespace
 {
-/// Inflates a whole gzip file into memory.
-std::string gunzip(const std::string& path)
-{
-  // zlib reads a file without the gzip magic number as it is; a ".gz" must have it.
-  char magic[2] = { 0, 0 };
-  std::ifstream(path, std::ios::binary).read(magic, 2);
-  if (static_cast<unsigned char>(magic[0]) != 0x1f || static_cast<unsigned char>(magic[1]) != 0x8b)
-  {
-    throw InputError("'" + path + "' is not a valid gzip file (no gzip header); decompress it "
-                     "or re-export it");
-  }
-  gzFile file = gzopen(path.c_str(), "rb");
-  if (!file)
-  {
-    throw InputError("cannot open '" + path + "'");
-  }
-  std::string data;
-  std::vector<char> buffer(1 << 16);
-  int n = 0;
-  while ((n = gzread(file, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
-  {
-    data.append(buffer.data(), static_cast<size_t>(n));
-  }
-  int code = Z_OK;
-  const std::string message = gzerror(file, &code);
-  gzclose(file);
-  if (n != 0 || code != Z_OK)
-  {
-    throw InputError("'" + path + "' is not a valid gzip file (" + message +
-      "); decompress it or re-export it");
-  }
-  return data;
-}
-
 using Point = CGAL::Simple_cartesian<double>::Point_3;
 
 /// The points and faces a CGAL reader gave, as a soup whose every face has 3 or more corners
@@ -177,6 +143,39 @@ long long declared(const std::string& header, const std::string& element)
 }
 } // namespace
 
+std::string readGzip(const std::string& path)
+{
+  // zlib reads a file without the gzip magic number as it is; a ".gz" must have it.
+  char magic[2] = { 0, 0 };
+  std::ifstream(path, std::ios::binary).read(magic, 2);
+  if (static_cast<unsigned char>(magic[0]) != 0x1f || static_cast<unsigned char>(magic[1]) != 0x8b)
+  {
+    throw InputError("'" + path + "' is not a valid gzip file (no gzip header); decompress it "
+                     "or re-export it");
+  }
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    throw InputError("cannot open '" + path + "'");
+  }
+  std::string data;
+  std::vector<char> buffer(1 << 16);
+  int n = 0;
+  while ((n = gzread(file, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
+  {
+    data.append(buffer.data(), static_cast<size_t>(n));
+  }
+  int code = Z_OK;
+  const std::string message = gzerror(file, &code);
+  gzclose(file);
+  if (n != 0 || code != Z_OK)
+  {
+    throw InputError("'" + path + "' is not a valid gzip file (" + message +
+      "); decompress it or re-export it");
+  }
+  return data;
+}
+
 PolygonSoup readPLY(const std::string& path)
 {
   std::ifstream file(path, std::ios::binary);
@@ -189,7 +188,7 @@ PolygonSoup readPLY(const std::string& path)
   if (gzipped)
   {
     file.close();
-    bytes = gunzip(path);
+    bytes = readGzip(path);
   }
   else
   {

@@ -32,4 +32,10 @@ PolygonSoup readPLY(const std::string& path);
 ///   reader refuses (with the counts read), a face with fewer than 3 corners or a corner out of
 ///   range, or a file without faces
 PolygonSoup readOBJ(const std::string& path);
+
+/// The inflated bytes of a whole gzip file.
+///
+/// @throws tc::InputError  naming the file, for a missing file, one without the gzip header, or
+///   a stream that does not inflate
+std::string readGzip(const std::string& path);
 } // namespace tc
