@@ -8,10 +8,11 @@
  * The output is the file's polygons with their point and cell arrays, unchanged; cleaning is
  * tcMeshPreparation's job. PLY and OBJ files are read by tc::readPLY and tc::readOBJ
  * (positions and faces; other properties, texture coordinates, normals and groups are
- * skipped), since VTK's PLY and OBJ readers crash on truncated or damaged files. A scene file gives every mesh its nodes place, with their
- * transforms, in the rest pose, and a cell array "SceneMeshId"; its bones and animations are
- * counted in the report, not applied (tc::readScene). What was read (format, points, polygons, arrays) is in GetReport()
- * and in the field array "ReaderReport". A missing file, an unknown extension or a file that
+ * skipped), since VTK's PLY and OBJ readers crash on truncated or damaged files. A scene file
+ * gives every mesh its nodes place, with their transforms, in the rest pose, and a cell array
+ * "SceneMeshId"; its bones and animations are counted in the report, not applied
+ * (tc::readScene). What was read (format, points, polygons, arrays) is in GetReport() and in
+ * the field array "ReaderReport". A missing file, an unknown extension or a file that
  * holds no polygons is an error that names the file and what to do.
  */
 #ifndef tcMeshReader_h
