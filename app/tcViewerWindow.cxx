@@ -16,8 +16,8 @@
 #include "tcSpectralClustering.h"
 #include "tcSurfaceDistance.h"
 
-#include "tc/array_names.h"
-#include "tc/atlas.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/atlas.h"
 
 #include <QAction>
 #include <QApplication>

@@ -14,18 +14,18 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/atlas.h"
-#include "tc/atlas_io.h"
-#include "tc/base_complex.h"
-#include "tc/crest_lines.h"
-#include "tc/curvature.h"
-#include "tc/feature_refinement.h"
-#include "tc/geometry_image_mesh.h"
-#include "tc/geometry_images.h"
-#include "tc/mesh.h"
-#include "tc/path_tracing.h"
-#include "tc/spectral_clustering.h"
-#include "tc/surface_distance.h"
+#include "tc/gim/atlas.h"
+#include "tc/io/atlas_io.h"
+#include "tc/gim/base_complex.h"
+#include "tc/features/crest_lines.h"
+#include "tc/features/curvature.h"
+#include "tc/features/feature_refinement.h"
+#include "tc/gim/geometry_image_mesh.h"
+#include "tc/gim/geometry_images.h"
+#include "tc/common/mesh.h"
+#include "tc/gim/path_tracing.h"
+#include "tc/features/spectral_clustering.h"
+#include "tc/metrics/surface_distance.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>

@@ -8,7 +8,7 @@
 // to it.
 //
 //   tc_bench_lod_selection
-#include "tc/lod_selection.h"
+#include "tc/gim/lod_selection.h"
 
 #include "view_matrices.h"
 

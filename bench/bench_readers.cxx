@@ -7,7 +7,7 @@
 //   tc_bench_readers [mesh ...]   default: the 871K dragon and 1.2M bunny scans, bunny_glmark2
 #include "bench_common.h"
 
-#include "tc/soup_io.h"
+#include "tc/io/soup_io.h"
 
 #include <vtkLogger.h>
 #include <vtkOBJReader.h>

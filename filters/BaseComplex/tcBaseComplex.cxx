@@ -3,8 +3,8 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/base_complex.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/base_complex.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcAtlasConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/errors.h"
+#include "tc/common/array_names.h"
+#include "tc/common/errors.h"
 
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>

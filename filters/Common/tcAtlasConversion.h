@@ -18,7 +18,7 @@
 
 #include "TriChartCommonModule.h"
 
-#include "tc/atlas.h"
+#include "tc/gim/atlas.h"
 
 #include <string>
 

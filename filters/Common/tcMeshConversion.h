@@ -10,10 +10,10 @@
 
 #include "TriChartCommonModule.h"
 
-#include "tc/base_complex.h"
-#include "tc/mesh.h"
-#include "tc/path_tracing.h"
-#include "tc/progress.h"
+#include "tc/gim/base_complex.h"
+#include "tc/common/mesh.h"
+#include "tc/gim/path_tracing.h"
+#include "tc/common/progress.h"
 
 #include <vtkSmartPointer.h>
 #include <vtkType.h>

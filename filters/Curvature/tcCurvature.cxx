@@ -3,9 +3,9 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/crest_lines.h"
-#include "tc/curvature.h"
+#include "tc/common/array_names.h"
+#include "tc/features/crest_lines.h"
+#include "tc/features/curvature.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

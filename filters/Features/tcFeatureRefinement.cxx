@@ -3,8 +3,8 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/feature_refinement.h"
+#include "tc/common/array_names.h"
+#include "tc/features/feature_refinement.h"
 
 #include <vtkCellData.h>
 #include <vtkFieldData.h>

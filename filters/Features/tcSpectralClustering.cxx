@@ -3,9 +3,9 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/mesh_topology.h"
-#include "tc/spectral_clustering.h"
+#include "tc/common/array_names.h"
+#include "tc/common/mesh_topology.h"
+#include "tc/features/spectral_clustering.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

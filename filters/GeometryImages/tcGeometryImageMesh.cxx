@@ -4,8 +4,8 @@
 #include "tcAtlasConversion.h"
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/geometry_image_mesh.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/geometry_image_mesh.h"
 
 #include <vtkCellData.h>
 #include <vtkFloatArray.h>

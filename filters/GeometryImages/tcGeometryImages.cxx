@@ -4,8 +4,8 @@
 #include "tcAtlasConversion.h"
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/geometry_images.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/geometry_images.h"
 
 #include <vtkDataArray.h>
 #include <vtkInformation.h>

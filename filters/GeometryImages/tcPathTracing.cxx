@@ -3,8 +3,8 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/path_tracing.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/path_tracing.h"
 
 #include <vtkCellData.h>
 #include <vtkFieldData.h>

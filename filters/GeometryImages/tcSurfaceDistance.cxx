@@ -3,8 +3,8 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/surface_distance.h"
+#include "tc/common/array_names.h"
+#include "tc/metrics/surface_distance.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>

@@ -4,7 +4,7 @@
 #include "tcAtlasConversion.h"
 #include "tcMeshConversion.h"
 
-#include "tc/atlas_io.h"
+#include "tc/io/atlas_io.h"
 
 #include <vtkErrorCode.h>
 #include <vtkInformation.h>

@@ -3,11 +3,11 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/errors.h"
-#include "tc/off_io.h"
-#include "tc/soup_io.h"
-#include "tc/scene_io.h"
+#include "tc/common/array_names.h"
+#include "tc/common/errors.h"
+#include "tc/io/off_io.h"
+#include "tc/io/soup_io.h"
+#include "tc/io/scene_io.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>

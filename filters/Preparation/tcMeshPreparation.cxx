@@ -3,8 +3,8 @@
 
 #include "tcMeshConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/mesh_preparation.h"
+#include "tc/common/array_names.h"
+#include "tc/prep/mesh_preparation.h"
 
 #include <vtkCellData.h>
 #include <vtkFieldData.h>

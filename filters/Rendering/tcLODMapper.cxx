@@ -3,10 +3,10 @@
 
 #include "tcAtlasConversion.h"
 
-#include "tc/atlas.h"
-#include "tc/geometry_image_mesh.h"
-#include "tc/lod_selection.h"
-#include "tc/parallel.h"
+#include "tc/gim/atlas.h"
+#include "tc/gim/geometry_image_mesh.h"
+#include "tc/gim/lod_selection.h"
+#include "tc/common/parallel.h"
 
 #include "tcGeometryImageBeginVS.h"
 #include "tcGeometryImageColorDecFS.h"

@@ -7,7 +7,7 @@
 #include "tcFeatureRefinement.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>

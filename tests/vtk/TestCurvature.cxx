@@ -5,7 +5,7 @@
 #include "tcCurvature.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>

@@ -11,7 +11,7 @@
 #include "tcSurfaceDistance.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>

@@ -11,8 +11,8 @@
 #include "tcPathTracing.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
-#include "tc/atlas.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/atlas.h"
 
 #include <vtkCamera.h>
 #include <vtkExecutive.h>

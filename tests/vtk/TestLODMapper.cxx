@@ -14,8 +14,8 @@
 
 #include "tcAtlasConversion.h"
 
-#include "tc/array_names.h"
-#include "tc/geometry_image_mesh.h"
+#include "tc/common/array_names.h"
+#include "tc/gim/geometry_image_mesh.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>

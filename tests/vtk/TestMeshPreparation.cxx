@@ -7,7 +7,7 @@
 #include "tcMeshPreparation.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>

@@ -7,7 +7,7 @@
 #include "tcPathTracing.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -5,7 +5,7 @@
 #include "tcSpectralClustering.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>

@@ -9,7 +9,7 @@
 #include "tcSurfaceDistance.h"
 #include "tcTestUtilities.h"
 
-#include "tc/array_names.h"
+#include "tc/common/array_names.h"
 
 #include <vtkDataArray.h>
 #include <vtkLookupTable.h>

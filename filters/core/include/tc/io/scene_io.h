@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file scene_io.h
+/// Scene formats (glTF, FBX, DirectX X, MD2) read through Assimp: the surfaces of a skinned or
+/// animated character, in its rest pose, as one polygon soup.
+#pragma once
+
+#include "tc/common/mesh.h"
+#include "tc/common/progress.h"
+
+#include <string>
+#include <vector>
+
+namespace tc
+{
+/// The surfaces of a scene file.
+struct Scene
+{
+  PolygonSoup soup;             ///< every mesh of every node, node transforms applied
+  std::vector<int32_t> meshId;  ///< #P: index of the scene mesh each polygon came from
+  std::vector<std::string> meshNames; ///< one per scene mesh (may be empty strings)
+  std::string importer;         ///< the Assimp importer that read the file, e.g. "glTF2 Importer"
+  int64_t meshInstances = 0;    ///< meshes placed by nodes (a mesh used by 2 nodes counts 2)
+  int64_t skinnedMeshes = 0;    ///< scene meshes with bones
+  int64_t bones = 0;            ///< distinct bone names over all meshes
+  int64_t animations = 0;       ///< animations in the file (not applied: the rest pose is read)
+  int64_t morphTargets = 0;     ///< vertex animation targets (not applied)
+  int64_t skippedPrimitives = 0; ///< points and lines, which are no surface
+};
+
+/// File extensions readScene handles, space-separated, without dots.
+const char* sceneExtensions();
+
+/// True if `path` ends (case-insensitively) with one of sceneExtensions().
+bool isSceneFile(const std::string& path);
+
+/// Reads the surfaces of a scene file with Assimp (no post-processing but joining identical
+/// vertices, so that each scene mesh is indexed). Every node's meshes are placed with the
+/// node's transform accumulated from the root, so the soup is the scene as the file positions
+/// it, in the rest (bind) pose: bones, skin weights and animations are counted, not applied.
+/// Polygons keep their corner count (tc::prepareMesh triangulates); points and lines are
+/// skipped and counted.
+///
+/// @param[in] path      the file (and, for glTF, the files it refers to beside it)
+/// @param[in] progress  reported while Assimp reads; may abort (tc::Aborted)
+/// @throws tc::InputError  for a missing file, an extension none of sceneExtensions(), a file
+///   Assimp cannot parse (its message is kept), or a scene without a polygon
+Scene readScene(const std::string& path, const Progress& progress = {});
+} // namespace tc

@@ -1,0 +1,412 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tc/io/off_io.h"
+
+#include "tc/common/errors.h"
+
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string_view>
+#include <system_error>
+
+namespace tc
+{
+namespace
+{
+bool isBlank(char c)
+{
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/// Whole-token number parsing at from_chars speed. A leading '+' is accepted (from_chars does
+/// not take it); values beyond the double range become +-Inf or 0 as strtod makes them.
+bool parseDouble(std::string_view token, double& value)
+{
+  const char* begin = token.data();
+  const char* end = begin + token.size();
+  if (begin != end && *begin == '+')
+  {
+    ++begin;
+  }
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range && ptr == end)
+  {
+    value = std::strtod(std::string(token).c_str(), nullptr);
+    return true;
+  }
+  return ec == std::errc() && ptr == end && begin != end;
+}
+
+bool parseInteger(std::string_view token, int64_t& value)
+{
+  const char* begin = token.data();
+  const char* end = begin + token.size();
+  if (begin != end && *begin == '+')
+  {
+    ++begin;
+  }
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  return ec == std::errc() && ptr == end && begin != end;
+}
+
+/// Line-by-line view of an OFF file held in memory. Comments ('#' to the end of the line) and
+/// blank lines are skipped; the line number of the current line goes into every error.
+class OffScanner
+{
+public:
+  OffScanner(const std::string& path, const char* begin, const char* end)
+    : Path(path)
+    , Cursor(begin)
+    , End(end)
+  {
+  }
+
+  /// Moves to the next line with at least one token; false at the end of the file.
+  bool nextLine()
+  {
+    while (Cursor < End)
+    {
+      const char* start = Cursor;
+      const char* newline =
+        static_cast<const char*>(std::memchr(Cursor, '\n', static_cast<size_t>(End - Cursor)));
+      const char* stop = newline ? newline : End;
+      Cursor = newline ? newline + 1 : End;
+      ++LineNumber;
+      const char* hash =
+        static_cast<const char*>(std::memchr(start, '#', static_cast<size_t>(stop - start)));
+      if (hash)
+      {
+        stop = hash;
+      }
+      while (start < stop && isBlank(*start))
+      {
+        ++start;
+      }
+      if (start < stop)
+      {
+        Token = start;
+        LineEnd = stop;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Next whitespace-separated token of the current line; false when the line has no more.
+  bool nextToken(std::string_view& token)
+  {
+    while (Token < LineEnd && isBlank(*Token))
+    {
+      ++Token;
+    }
+    if (Token == LineEnd)
+    {
+      return false;
+    }
+    const char* start = Token;
+    while (Token < LineEnd && !isBlank(*Token))
+    {
+      ++Token;
+    }
+    token = std::string_view(start, static_cast<size_t>(Token - start));
+    return true;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const
+  {
+    throw InputError(Path + ":" + std::to_string(LineNumber) + ": " + message);
+  }
+
+private:
+  const std::string& Path;
+  const char* Cursor;
+  const char* End;
+  const char* Token = nullptr;
+  const char* LineEnd = nullptr;
+  int64_t LineNumber = 0;
+};
+
+std::string readWholeFile(const std::string& path)
+{
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+  {
+    throw InputError(path + ": cannot read the OFF file: it does not exist");
+  }
+  if (std::filesystem::is_directory(status))
+  {
+    throw InputError(path + ": cannot read the OFF file: it is a folder");
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+  {
+    throw InputError(path + ": cannot open the OFF file: " + std::strerror(errno));
+  }
+  std::string text;
+  text.reserve(static_cast<size_t>(std::filesystem::file_size(path, ec)));
+  char buffer[1 << 16];
+  size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof(buffer), file)) > 0)
+  {
+    text.append(buffer, got);
+  }
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed)
+  {
+    throw InputError(path + ": error while reading the OFF file");
+  }
+  return text;
+}
+
+std::string quoted(std::string_view token)
+{
+  constexpr size_t kMaxShown = 40;
+  std::string shown(token.substr(0, kMaxShown));
+  if (token.size() > kMaxShown)
+  {
+    shown += "...";
+  }
+  return "'" + shown + "'";
+}
+} // namespace
+
+// Parsed by hand rather than with CGAL::IO::read_OFF: CGAL reports a bad file as a bare
+// `false`, while users fixing a broken file need to be told which line is wrong and why.
+PolygonSoup readOFF(const std::string& path)
+{
+  const std::string text = readWholeFile(path);
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (text.size() >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0)
+  {
+    begin += 3;
+  }
+  if (begin == end)
+  {
+    throw InputError(path + ": not an OFF file: it is empty");
+  }
+  OffScanner scan(path, begin, end);
+  std::string_view token;
+
+  // Keyword [ST][C][N][4][n]OFF: only the 4 and n prefixes change the vertex layout.
+  if (!scan.nextLine() || !scan.nextToken(token))
+  {
+    scan.fail("not an OFF file: it is empty");
+  }
+  std::string_view keyword = token;
+  auto eat = [&keyword](std::string_view prefix)
+  {
+    if (keyword.substr(0, prefix.size()) == prefix)
+    {
+      keyword.remove_prefix(prefix.size());
+      return true;
+    }
+    return false;
+  };
+  eat("ST");
+  eat("C");
+  eat("N");
+  const bool homogeneous = eat("4");
+  const bool anyDimension = eat("n");
+  if (keyword != "OFF")
+  {
+    scan.fail("not an OFF file: the first word is " + quoted(token) +
+      ", expected OFF (or COFF, NOFF, CNOFF, STOFF, 4OFF, nOFF)");
+  }
+  if (!scan.nextToken(token))
+  {
+    if (!scan.nextLine() || !scan.nextToken(token))
+    {
+      scan.fail("the file ends before the counts line 'vertices faces edges'");
+    }
+  }
+  if (token == "BINARY")
+  {
+    scan.fail("binary OFF is not supported; convert the file to ASCII OFF");
+  }
+  int64_t dimension = 3;
+  if (anyDimension)
+  {
+    if (!parseInteger(token, dimension) || dimension < 1 || dimension > 64)
+    {
+      scan.fail("bad nOFF dimension " + quoted(token) + ", expected an integer from 1 to 64");
+    }
+    if (!scan.nextToken(token) && (!scan.nextLine() || !scan.nextToken(token)))
+    {
+      scan.fail("the file ends before the counts line 'vertices faces edges'");
+    }
+  }
+  const int64_t columns = dimension + (homogeneous ? 1 : 0);
+
+  int64_t numVertices = 0;
+  int64_t numFaces = 0;
+  if (!parseInteger(token, numVertices) || numVertices < 0)
+  {
+    scan.fail("bad vertex count " + quoted(token) +
+      ": expected the line 'vertices faces edges' "
+      "with non-negative integers");
+  }
+  if (!scan.nextToken(token) || !parseInteger(token, numFaces) || numFaces < 0)
+  {
+    scan.fail("bad or missing face count: expected the line 'vertices faces edges' with "
+              "non-negative integers");
+  }
+  // A vertex line takes at least 6 bytes and a face line 8: larger counts cannot be right, and
+  // must not make us reserve gigabytes.
+  const int64_t bytes = static_cast<int64_t>(end - begin);
+  if (numVertices > bytes / 6 + 1 || numFaces > bytes / 8 + 1)
+  {
+    scan.fail("the counts (" + std::to_string(numVertices) + " vertices, " +
+      std::to_string(numFaces) + " faces) do not fit in a file of " + std::to_string(bytes) +
+      " bytes; the file is truncated or the counts are wrong");
+  }
+
+  PolygonSoup soup;
+  soup.points.resize(3 * numVertices);
+  soup.offsets.reserve(numFaces + 1);
+  soup.connectivity.reserve(3 * numFaces);
+  double coordinates[65];
+  for (int64_t v = 0; v < numVertices; ++v)
+  {
+    if (!scan.nextLine())
+    {
+      scan.fail("the file ends after " + std::to_string(v) + " of " + std::to_string(numVertices) +
+        " vertices; it is truncated or the counts are wrong");
+    }
+    for (int64_t c = 0; c < columns; ++c)
+    {
+      if (!scan.nextToken(token))
+      {
+        scan.fail("vertex " + std::to_string(v) + " has " + std::to_string(c) +
+          " coordinates, expected " + std::to_string(columns));
+      }
+      if (!parseDouble(token, coordinates[c]))
+      {
+        scan.fail("vertex " + std::to_string(v) + ": " + quoted(token) + " is not a number");
+      }
+    }
+    const double w = homogeneous ? coordinates[columns - 1] : 1.0;
+    for (int64_t c = 0; c < 3; ++c)
+    {
+      soup.points[3 * v + c] = c < dimension ? coordinates[c] / w : 0.0;
+    }
+  }
+
+  for (int64_t f = 0; f < numFaces; ++f)
+  {
+    if (!scan.nextLine())
+    {
+      scan.fail("the file ends after " + std::to_string(f) + " of " + std::to_string(numFaces) +
+        " faces; it is truncated or the counts are wrong");
+    }
+    int64_t corners = 0;
+    scan.nextToken(token);
+    if (!parseInteger(token, corners) || corners < 1)
+    {
+      scan.fail("face " + std::to_string(f) + ": bad corner count " + quoted(token) +
+        ", expected a positive integer");
+    }
+    for (int64_t c = 0; c < corners; ++c)
+    {
+      int64_t id = 0;
+      if (!scan.nextToken(token))
+      {
+        scan.fail("face " + std::to_string(f) + " has " + std::to_string(c) +
+          " corner indices, expected " + std::to_string(corners));
+      }
+      if (!parseInteger(token, id))
+      {
+        scan.fail("face " + std::to_string(f) + ": " + quoted(token) + " is not a vertex index");
+      }
+      if (id < 0 || id >= numVertices)
+      {
+        scan.fail("face " + std::to_string(f) + ": vertex index " + std::to_string(id) +
+          " is out of range; the file has " + std::to_string(numVertices) + " vertices (0 to " +
+          std::to_string(numVertices - 1) + ")");
+      }
+      soup.connectivity.push_back(id);
+    }
+    soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
+  }
+  return soup;
+}
+
+void writeOFF(const std::string& path, const TriMesh& mesh)
+{
+  const int64_t nv = mesh.numPoints();
+  const int64_t nf = mesh.numTriangles();
+  if (mesh.points.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)
+  {
+    throw InputError("writeOFF " + path +
+      ": the point and triangle arrays must hold whole "
+      "triples");
+  }
+  for (int64_t i = 0; i < 3 * nf; ++i)
+  {
+    if (mesh.triangles[i] < 0 || mesh.triangles[i] >= nv)
+    {
+      throw InputError("writeOFF " + path + ": triangle " + std::to_string(i / 3) +
+        " refers to point " + std::to_string(mesh.triangles[i]) + " but the mesh has " +
+        std::to_string(nv) + " points");
+    }
+  }
+
+  // std::to_chars without a format gives the shortest text that reads back to the same double.
+  std::string text;
+  text.reserve(static_cast<size_t>(nv * 3 * 24 + nf * 28 + 64));
+  text += "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
+  char buffer[64];
+  for (int64_t i = 0; i < 3 * nv; ++i)
+  {
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), mesh.points[i]);
+    text.append(buffer, result.ptr);
+    text += (i % 3 == 2) ? '\n' : ' ';
+  }
+  for (int64_t f = 0; f < nf; ++f)
+  {
+    text += '3';
+    for (int c = 0; c < 3; ++c)
+    {
+      text += ' ';
+      const auto result = std::to_chars(buffer, buffer + sizeof(buffer), mesh.triangles[3 * f + c]);
+      text.append(buffer, result.ptr);
+    }
+    text += '\n';
+  }
+
+  // A unique name beside the target keeps the final rename on one file system (so it is atomic)
+  // and lets two writers of different files in one folder never collide.
+  static std::atomic<uint64_t> counter{ 0 };
+  const uint64_t stamp =
+    static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  const std::string temporary =
+    path + ".tmp" + std::to_string(stamp % 1000000007u) + "-" + std::to_string(counter++);
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file)
+  {
+    throw InputError("cannot write " + path + ": " + std::strerror(errno) +
+      " (does the folder exist and is it writable?)");
+  }
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed)
+  {
+    std::remove(temporary.c_str());
+    throw InputError("cannot write " + path + ": the write failed (disk full?)");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec)
+  {
+    std::remove(temporary.c_str());
+    throw InputError("cannot write " + path + ": " + ec.message());
+  }
+}
+} // namespace tc

@@ -1,0 +1,261 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tc/io/soup_io.h"
+
+#include "tc/common/errors.h"
+
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <zlib.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace tc
+{
+namespace
+{
+using Point = CGAL::Simple_cartesian<double>::Point_3;
+
+/// The points and faces a CGAL reader gave, as a soup whose every face has 3 or more corners
+/// that exist.
+PolygonSoup toSoup(const std::string& path, const std::vector<Point>& points,
+  const std::vector<std::vector<std::size_t>>& faces)
+{
+  if (faces.empty())
+  {
+    throw InputError("'" + path + "' has no faces (" + std::to_string(points.size()) +
+      " vertices): a point cloud is no surface");
+  }
+  PolygonSoup soup;
+  soup.points.reserve(3 * points.size());
+  for (const Point& p : points)
+  {
+    soup.points.insert(soup.points.end(), { p.x(), p.y(), p.z() });
+  }
+  soup.connectivity.reserve(3 * faces.size());
+  soup.offsets.reserve(faces.size() + 1);
+  std::vector<int64_t> ids;
+  for (size_t f = 0; f < faces.size(); ++f)
+  {
+    if (faces[f].size() < 3)
+    {
+      throw InputError("'" + path + "': face " + std::to_string(f) + " has " +
+        std::to_string(faces[f].size()) + " corners; a face needs 3 or more");
+    }
+    ids.assign(faces[f].begin(), faces[f].end());
+    for (const int64_t id : ids)
+    {
+      if (id < 0 || id >= soup.numPoints())
+      {
+        throw InputError("'" + path + "': face " + std::to_string(f) + " refers to vertex " +
+          std::to_string(id) + ", and the file has " + std::to_string(soup.numPoints()) +
+          " (a damaged file?)");
+      }
+    }
+    soup.addPolygon(ids.data(), static_cast<int64_t>(ids.size()));
+  }
+  return soup;
+}
+
+/// Checks the header line by line, so that CGAL's reader (which assumes a well-formed header and
+/// crashes on, e.g., a property before any element) only sees headers it can parse; throws
+/// InputError naming the first line that is not PLY.
+void checkHeader(const std::string& path, const std::string& bytes)
+{
+  const size_t end = bytes.find("end_header");
+  if (end == std::string::npos)
+  {
+    throw InputError("'" + path + "' is no PLY file: its header has no end_header line");
+  }
+  static const std::set<std::string> types = { "char", "uchar", "short", "ushort", "int", "uint",
+    "float", "double", "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32",
+    "float64" };
+  std::istringstream lines(bytes.substr(0, end));
+  std::string line;
+  int number = 0;
+  bool element = false;
+  while (std::getline(lines, line))
+  {
+    ++number;
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;)
+    {
+      w.push_back(word);
+    }
+    bool ok = false;
+    if (number == 1)
+    {
+      ok = w.size() == 1 && w[0] == "ply";
+    }
+    else if (number == 2)
+    {
+      ok = w.size() == 3 && w[0] == "format" &&
+        (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
+    }
+    else if (w.empty() || w[0] == "comment" || w[0] == "obj_info")
+    {
+      ok = true;
+    }
+    else if (w[0] == "element")
+    {
+      ok = w.size() == 3 && !w[2].empty() &&
+        w[2].find_first_not_of("0123456789") == std::string::npos && w[2].size() < 12;
+      element = element || ok;
+    }
+    else if (w[0] == "property" && element)
+    {
+      ok = (w.size() == 3 && types.count(w[1])) ||
+        (w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]));
+    }
+    if (!ok)
+    {
+      throw InputError("'" + path + "' is no PLY file: header line " + std::to_string(number) +
+        " ('" + line.substr(0, 60) + "') is not PLY (a damaged file?)");
+    }
+  }
+}
+
+/// The counts the header declares for an element ("vertex", "face"); -1 if it has none.
+long long declared(const std::string& header, const std::string& element)
+{
+  std::istringstream lines(header);
+  std::string line;
+  while (std::getline(lines, line) && line.rfind("end_header", 0) != 0)
+  {
+    std::istringstream words(line);
+    std::string keyword, name;
+    long long count = -1;
+    if (words >> keyword >> name >> count && keyword == "element" && name == element)
+    {
+      return count;
+    }
+  }
+  return -1;
+}
+} // namespace
+
+std::string readGzip(const std::string& path)
+{
+  // zlib reads a file without the gzip magic number as it is; a ".gz" must have it.
+  char magic[2] = { 0, 0 };
+  std::ifstream(path, std::ios::binary).read(magic, 2);
+  if (static_cast<unsigned char>(magic[0]) != 0x1f || static_cast<unsigned char>(magic[1]) != 0x8b)
+  {
+    throw InputError("'" + path + "' is not a valid gzip file (no gzip header); decompress it "
+                     "or re-export it");
+  }
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    throw InputError("cannot open '" + path + "'");
+  }
+  std::string data;
+  std::vector<char> buffer(1 << 16);
+  int n = 0;
+  while ((n = gzread(file, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
+  {
+    data.append(buffer.data(), static_cast<size_t>(n));
+  }
+  int code = Z_OK;
+  const std::string message = gzerror(file, &code);
+  gzclose(file);
+  if (n != 0 || code != Z_OK)
+  {
+    throw InputError("'" + path + "' is not a valid gzip file (" + message +
+      "); decompress it or re-export it");
+  }
+  return data;
+}
+
+PolygonSoup readPLY(const std::string& path)
+{
+  std::ifstream file(path, std::ios::binary);
+  if (!file.good())
+  {
+    throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
+  }
+  const bool gzipped = path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
+  std::string bytes;
+  if (gzipped)
+  {
+    file.close();
+    bytes = readGzip(path);
+  }
+  else
+  {
+    std::ostringstream all;
+    all << file.rdbuf();
+    bytes = all.str();
+  }
+  if (bytes.compare(0, 3, "ply") != 0)
+  {
+    throw InputError("'" + path + "' is no PLY file: it does not start with 'ply'");
+  }
+  checkHeader(path, bytes);
+
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  std::istringstream in(bytes);
+  bool ok = false;
+  try
+  {
+    ok = CGAL::IO::read_PLY(in, points, faces, CGAL::parameters::verbose(false));
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError("cannot read '" + path + "' as PLY: " + e.what());
+  }
+  const std::string header = bytes.substr(0, bytes.find("end_header"));
+  if (!ok)
+  {
+    const auto count = [&header](const char* element, const char* plural)
+    {
+      const long long n = declared(header, element);
+      return n < 0 ? std::string("no ") + element + " element" : std::to_string(n) + " " + plural;
+    };
+    throw InputError("cannot read '" + path + "' as PLY: the header declares " +
+      count("vertex", "vertices") + " and " + count("face", "faces") + ", and " +
+      std::to_string(points.size()) + " vertices and " + std::to_string(faces.size()) +
+      " faces were read before the data stopped matching it (a truncated or damaged file, or "
+      "an unsupported layout)");
+  }
+  return toSoup(path, points, faces);
+}
+
+PolygonSoup readOBJ(const std::string& path)
+{
+  std::ifstream file(path, std::ios::binary);
+  if (!file.good())
+  {
+    throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
+  }
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  bool ok = false;
+  try
+  {
+    ok = CGAL::IO::read_OBJ(file, points, faces, CGAL::parameters::verbose(false));
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError("cannot read '" + path + "' as OBJ: " + e.what());
+  }
+  if (!ok && !faces.empty())
+  {
+    throw InputError("cannot read '" + path + "' as OBJ: " + std::to_string(points.size()) +
+      " vertices and " + std::to_string(faces.size()) +
+      " faces were read before a line that is no OBJ, or a face with a vertex the file does not "
+      "have (a truncated or damaged file?)");
+  }
+  return toSoup(path, points, faces);
+}
+} // namespace tc

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The static pipeline from base complex to rebuilt mesh on real meshes: every chart
+// parameterization is free of flips, the atlas is valid, and 100 random level assignments per
+// mesh (neighbours several levels apart included) each rebuild a closed oriented manifold with
+// the input's Euler characteristic and no degenerate triangle (Feng et al. 5.1-5.2, 6.3).
+#include "mesh_checks.h"
+#include "pipeline_fixture.h"
+
+#include "tc/gim/atlas.h"
+#include "tc/gim/geometry_image_mesh.h"
+#include "tc/gim/geometry_images.h"
+#include "tc/gim/path_tracing.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <random>
+
+namespace
+{
+struct Built
+{
+  const tctest::PipelineCase* input = nullptr;
+  tc::PatchMesh patches;
+  tc::Atlas atlas;
+};
+
+const Built* builtFor(const std::string& name)
+{
+  static std::map<std::string, std::unique_ptr<Built>> cache;
+  auto& slot = cache[name];
+  if (!slot)
+  {
+    const tctest::PipelineCase* c = tctest::pipelineCase(tctest::pipelineMeshPath(name));
+    if (!c)
+    {
+      return nullptr;
+    }
+    slot = std::make_unique<Built>();
+    slot->input = c;
+    slot->patches = tc::tracePaths(c->mesh, c->result);
+    // Eight samples per input point: enough levels for neighbours 3+ levels apart even where
+    // the base complex keeps many small charts.
+    tc::GeometryImageOptions options;
+    options.sampleBudget = std::max<int64_t>(
+      8 * c->mesh.numPoints(), 400 * static_cast<int64_t>(c->result.baseTriangles.size() / 3));
+    slot->atlas = tc::buildGeometryImages(slot->patches, c->result, {}, {}, {}, options);
+    std::printf("[ atlas    ] %s: %zu charts, finest level %d, %zu images\n", name.c_str(),
+      slot->atlas.charts.size(), slot->atlas.maxLevel(), slot->atlas.images.size());
+  }
+  return slot.get();
+}
+
+class AtlasOnMesh : public ::testing::TestWithParam<std::string>
+{
+protected:
+  void SetUp() override
+  {
+    B_ = builtFor(GetParam());
+    if (!B_)
+    {
+      GTEST_SKIP() << GetParam() << " is not in the shared data";
+    }
+  }
+  const Built* B_ = nullptr;
+};
+
+int64_t eulerOf(const tc::TriMesh& mesh)
+{
+  int64_t euler = 0;
+  const std::string defect = tctest::manifoldDefect(mesh, euler);
+  return defect.empty() ? euler : INT64_MIN;
+}
+} // namespace
+
+TEST_P(AtlasOnMesh, ChartParameterizationsHaveNoFlippedTriangle)
+{
+  int64_t flipped = 0, degenerate = 0;
+  const int32_t nf = static_cast<int32_t>(B_->input->result.baseTriangles.size() / 3);
+  for (int32_t f = 0; f < nf; ++f)
+  {
+    const tc::PatchParameterization p = tc::parameterizePatch(B_->patches, B_->input->result, f);
+    flipped += p.flippedTriangles;
+    degenerate += p.degenerateTriangles;
+  }
+  std::printf("%s: %d charts, %lld flipped, %lld flattened onto a side\n", GetParam().c_str(), nf,
+    static_cast<long long>(flipped), static_cast<long long>(degenerate));
+  EXPECT_EQ(flipped, 0);
+}
+
+TEST_P(AtlasOnMesh, IsAValidAtlas)
+{
+  EXPECT_NO_THROW(tc::validateAtlas(B_->atlas));
+  EXPECT_EQ(B_->atlas.charts.size(), B_->input->result.baseTriangles.size() / 3);
+  EXPECT_EQ(B_->atlas.inputTriangles, B_->input->mesh.numTriangles());
+}
+
+TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacteristic)
+{
+  int64_t euler = 0;
+  ASSERT_EQ(tctest::manifoldDefect(B_->input->mesh, euler), "");
+  const tc::Atlas& atlas = B_->atlas;
+  std::mt19937 random(12345);
+  int64_t farApart = 0;
+  for (int trial = 0; trial < 100; ++trial)
+  {
+    std::vector<int32_t> levels(atlas.charts.size());
+    for (size_t c = 0; c < levels.size(); ++c)
+    {
+      const int32_t top = atlas.charts[c].maxLevel;
+      // Every fourth trial sends each chart to 0 or its finest level: the largest gaps.
+      levels[c] = trial % 4 == 3 ? (random() % 2 ? top : 0)
+                                 : static_cast<int32_t>(random() % static_cast<uint32_t>(top + 1));
+    }
+    for (size_t c = 0; c < levels.size(); ++c)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        farApart += levels[c] - levels[static_cast<size_t>(atlas.charts[c].neighborChart[k])] >= 3;
+      }
+    }
+    const tc::RebuiltMesh rebuilt = tc::rebuildMesh(atlas, levels);
+    int64_t e = 0;
+    const std::string defect = tctest::manifoldDefect(rebuilt.mesh, e);
+    ASSERT_EQ(defect, "") << "trial " << trial;
+    ASSERT_EQ(e, euler) << "trial " << trial;
+  }
+  std::printf("%s: 100 rebuilds closed, Euler characteristic %lld, %lld chart sides 3+ levels "
+              "finer than their neighbour\n",
+    GetParam().c_str(), static_cast<long long>(euler), static_cast<long long>(farApart));
+  EXPECT_GT(farApart, 0);
+}
+
+TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
+{
+  // Four samples per input point (at least 45, level 3, per chart, so that the many small
+  // charts of some base complexes leave minLevel) under both level rules: the error rule
+  // spends them on the charts with the largest measured levelError, so its largest error at
+  // the finest level is not above the area rule's, and it stays within the budget.
+  const tctest::PipelineCase& c = *B_->input;
+  const int64_t budget = std::max<int64_t>(
+    4 * c.mesh.numPoints(), 45 * static_cast<int64_t>(c.result.baseTriangles.size() / 3));
+  double largest[2] = { 0.0, 0.0 };
+  int64_t samples[2] = { 0, 0 };
+  int32_t finest[2] = { 0, 0 };
+  for (const tc::LevelRule rule : { tc::LevelRule::Area, tc::LevelRule::Error })
+  {
+    tc::GeometryImageOptions options;
+    options.sampleBudget = budget;
+    options.levelRule = rule;
+    const tc::Atlas atlas = tc::buildGeometryImages(B_->patches, c.result, {}, {}, {}, options);
+    const int r = static_cast<int>(rule);
+    for (const tc::AtlasChart& ch : atlas.charts)
+    {
+      largest[r] = std::max(largest[r], ch.levelError[static_cast<size_t>(ch.maxLevel)]);
+      const int64_t n = int64_t(1) << ch.maxLevel;
+      samples[r] += (n + 1) * (n + 2) / 2;
+    }
+    finest[r] = atlas.maxLevel();
+  }
+  std::printf("%s: budget %lld; area rule: %lld samples, finest level %d, largest finest error "
+              "%.4f%% of the diagonal; error rule: %lld, %d, %.4f%%\n",
+    GetParam().c_str(), static_cast<long long>(budget), static_cast<long long>(samples[0]),
+    finest[0], 100.0 * largest[0] / B_->atlas.inputDiagonal, static_cast<long long>(samples[1]),
+    finest[1], 100.0 * largest[1] / B_->atlas.inputDiagonal);
+  EXPECT_LE(samples[1], budget);
+  EXPECT_LE(largest[1], largest[0]);
+}
+
+INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh,
+  ::testing::Values("bunny_npm", "cube", "fandisk", "elephant", "cow", "homer", "couplingdown"),
+  [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
