@@ -235,31 +235,9 @@ QStringList tcViewerWindow::StageNames()
 
 QString tcViewerWindow::ClosedManifoldHint() const
 {
-  tcMeshPreparation* p = this->Preparation;
-  QStringList fixes;
-  if (!p->GetSplitNonManifold() && p->GetNonManifoldEdges() + p->GetNonManifoldVertices() > 0)
-  {
-    fixes << QString("check SplitNonManifold (%1 non-manifold edges, %2 vertices)")
-               .arg(p->GetNonManifoldEdges())
-               .arg(p->GetNonManifoldVertices());
-  }
-  if (p->GetBoundaryEdges() > 0)
-  {
-    fixes << (p->GetFillHoles()
-        ? QString("raise MaxHoleEdges (%1 holes left open)").arg(p->GetOpenHoles())
-        : QString("check FillHoles (%1 boundary edges)").arg(p->GetBoundaryEdges()));
-  }
-  if (p->GetNonOrientableComponents() > 0)
-  {
-    fixes << QString("repair %1 non-orientable components in a mesh editor")
-               .arg(p->GetNonOrientableComponents());
-  }
-  if (!p->GetOrient())
-  {
-    fixes << "check Orient";
-  }
-  return "<b>Not a closed, oriented manifold</b>: the base complex will refuse it; " +
-    fixes.join("; ") + ", then Apply.";
+  return "<b>Not a closed, oriented manifold</b>: the base complex will refuse it: " +
+    QString::fromUtf8(this->Preparation->GetClosedManifoldRepairs()) +
+    ". Check the box in the Preparation panel, then Apply.";
 }
 
 bool tcViewerWindow::IsAtlasFile(const QString& path)
@@ -1013,17 +991,16 @@ bool tcViewerWindow::Run(vtkAlgorithm* algorithm, int port)
 {
   bool ok = this->Execute(algorithm, port);
   if (!ok && this->ErrorSource == this->PathTracing.GetPointer() &&
-    !this->RemoveSlivers->isChecked())
+    this->PathTracing->GetUntraceable() && !this->RemoveSlivers->isChecked())
   {
     // As `trichart build` does: slivers are what makes the parameterization of a scan or a CAD
     // mesh too thin to trace, so they are removed and the pipeline runs again; the checked box
     // and the note say so.
     const QString first = this->Error;
+    const QString reason = QString::fromUtf8(this->PathTracing->GetUntraceableReason());
     this->RemoveSlivers->setChecked(true);
     this->PushParameters();
     ok = this->Execute(algorithm, port);
-    const int at = first.indexOf("tracePaths: ");
-    const QString reason = (at >= 0 ? first.mid(at + 12) : first).section(';', 0, 0).trimmed();
     if (ok)
     {
       this->Note = "The paths could not be traced (" + reason +

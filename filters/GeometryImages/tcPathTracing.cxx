@@ -4,6 +4,7 @@
 #include "tcMeshConversion.h"
 
 #include "tc/common/array_names.h"
+#include "tc/common/errors.h"
 #include "tc/gim/path_tracing.h"
 
 #include <vtkCellData.h>
@@ -33,6 +34,9 @@ int tcPathTracing::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* paths = vtkPolyData::GetData(outputVector, 1);
 
+  this->Untraceable = false;
+  this->UntraceableReason.clear();
+
   // 2 and 3. The mesh, its base complex and the MAPS parameterization.
   tc::TriMesh mesh;
   tc::BaseComplexResult base;
@@ -49,6 +53,13 @@ int tcPathTracing::RequestData(
   try
   {
     patches = tc::tracePaths(mesh, base, tcvtk::MakeProgress(this));
+  }
+  catch (const tc::UntraceableError& e)
+  {
+    this->Untraceable = true;
+    this->UntraceableReason = e.reason();
+    vtkErrorMacro("Cannot trace paths: " << e.what());
+    return 0;
   }
   catch (const std::exception& e)
   {
@@ -142,4 +153,6 @@ int tcPathTracing::RequestData(
 void tcPathTracing::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Untraceable: " << this->Untraceable << "\n";
+  os << indent << "UntraceableReason: " << this->UntraceableReason << "\n";
 }

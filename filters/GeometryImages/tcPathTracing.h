@@ -26,12 +26,25 @@
 
 #include <vtkPolyDataAlgorithm.h>
 
+#include <string>
+
 class TRICHARTGEOMETRYIMAGES_EXPORT tcPathTracing : public vtkPolyDataAlgorithm
 {
 public:
   static tcPathTracing* New();
   vtkTypeMacro(tcPathTracing, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * After a failed update: whether it failed because the paths could not be traced (the
+   * parameterization is not one-to-one somewhere, which slivers cause; removing them in
+   * tcMeshPreparation, RemoveSlivers, is the repair), and what could not be traced. Cleared by
+   * every update.
+   */
+  vtkGetMacro(Untraceable, bool);
+  const char* GetUntraceableReason() const { return this->UntraceableReason.c_str(); }
+  ///@}
 
 protected:
   tcPathTracing();
@@ -40,6 +53,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  bool Untraceable = false;
+  std::string UntraceableReason;
+
   tcPathTracing(const tcPathTracing&) = delete;
   void operator=(const tcPathTracing&) = delete;
 };

@@ -77,6 +77,7 @@ int tcMeshPreparation::RequestData(
   this->NonManifoldEdges = this->NonManifoldVertices = this->BoundaryEdges = 0;
   this->OpenHoles = this->NonOrientableComponents = 0;
   this->ClosedManifold = false;
+  this->ClosedManifoldRepairs.clear();
 
   // 2. Validate: a surface needs polygons; the core checks everything else.
   if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
@@ -136,9 +137,8 @@ int tcMeshPreparation::RequestData(
   this->BoundaryEdges = counts.boundaryEdges;
   this->OpenHoles = counts.openHoles;
   this->NonOrientableComponents = counts.nonOrientableComponents;
-  this->ClosedManifold = this->Orient && counts.closedComponents == counts.components &&
-    counts.nonOrientableComponents == 0 &&
-    (this->SplitNonManifold || counts.nonManifoldEdges + counts.nonManifoldVertices == 0);
+  this->ClosedManifold = tc::closedManifold(counts, options);
+  this->ClosedManifoldRepairs = tc::closedManifoldRepairs(counts, options);
   this->Report = counts.text();
   if (ignored > 0)
   {

@@ -104,6 +104,11 @@ public:
   /// Orient off, which leaves the orientation unchecked).
   bool GetClosedManifold() const { return this->ClosedManifold; }
 
+  /// After a run whose output is not a closed manifold: each defect with its count and the
+  /// property (and `trichart build` flag) that repairs it, e.g. "3 boundary edges (close the
+  /// holes: FillHoles, trichart build --fill-holes)"; "" otherwise.
+  const char* GetClosedManifoldRepairs() const { return this->ClosedManifoldRepairs.c_str(); }
+
 protected:
   tcMeshPreparation();
   ~tcMeshPreparation() override;
@@ -130,6 +135,7 @@ private:
   vtkIdType OpenHoles = 0;
   vtkIdType NonOrientableComponents = 0;
   bool ClosedManifold = false;
+  std::string ClosedManifoldRepairs;
 };
 
 #endif

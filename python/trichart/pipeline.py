@@ -15,6 +15,15 @@ class TriChartError(RuntimeError):
     """A TriChart stage refused its input; the message says what to fix."""
 
 
+class UntraceableError(TriChartError):
+    """tcPathTracing could not trace the paths (the parameterization is not one-to-one
+    somewhere, which slivers cause); `reason` says what could not be traced."""
+
+    def __init__(self, message, reason):
+        super().__init__(message)
+        self.reason = reason
+
+
 def run(algorithm, label="", progress=None):
     """Update `algorithm`; raise TriChartError with its error message if it fails.
 
@@ -99,37 +108,11 @@ def _prepared(mesh, progress=None, **options):
 
 def _closed_manifold_check(f):
     """Raise TriChartError, before the stages that need one, when tcMeshPreparation `f` did not
-    give a closed, oriented manifold, with what to turn on (property and command-line flag)."""
+    give a closed, oriented manifold, with what to turn on (the preparation's own text)."""
     if f.GetClosedManifold():
         return
-    def count(n, one, many):
-        return f"{n} {one if n == 1 else many}"
-
-    problems = []
-    if not f.GetSplitNonManifold() and f.GetNonManifoldEdges() + f.GetNonManifoldVertices():
-        found = [count(n, one, many) for n, one, many in (
-            (f.GetNonManifoldEdges(), "non-manifold edge", "non-manifold edges"),
-            (f.GetNonManifoldVertices(), "non-manifold vertex", "non-manifold vertices")) if n]
-        problems.append(" and ".join(found) + " (split them: SplitNonManifold, trichart build "
-                        "--split-non-manifold)")
-    if f.GetNonOrientableComponents():
-        problems.append(count(f.GetNonOrientableComponents(), "non-orientable (Moebius-like) "
-                              "component", "non-orientable (Moebius-like) components") +
-                        ", which no orientation fixes (repair it in a mesh editor)")
-    if f.GetBoundaryEdges():
-        if not f.GetFillHoles():
-            problems.append(count(f.GetBoundaryEdges(), "boundary edge", "boundary edges") +
-                            " (close the holes: FillHoles, trichart build --fill-holes)")
-        else:
-            problems.append(count(f.GetOpenHoles(), "hole", "holes") + " left open, " +
-                            count(f.GetBoundaryEdges(), "boundary edge", "boundary edges") +
-                            " in all (FillHoles closes holes of up to "
-                            f"MaxHoleEdges = {f.GetMaxHoleEdges()} edges with a manifold "
-                            "patch: raise it, 0 for any size, trichart build --max-hole-edges)")
-    if not f.GetOrient():
-        problems.append("orientation unchecked (turn Orient on)")
     raise TriChartError("prepare: the prepared mesh is not a closed, oriented manifold, which "
-                        "the base complex needs: " + "; ".join(problems or ["unknown"]))
+                        "the base complex needs: " + f.GetClosedManifoldRepairs())
 
 
 def _configure(algorithm, options):
@@ -197,7 +180,12 @@ def trace_paths(parameterized, progress=None):
     """tcPathTracing on base_complex's second output; returns (patches with PatchId, paths)."""
     f = TriChartGeometryImages.tcPathTracing()
     f.SetInputData(parameterized)
-    run(f, "paths", progress)
+    try:
+        run(f, "paths", progress)
+    except TriChartError as error:
+        if f.GetUntraceable():
+            raise UntraceableError(str(error), f.GetUntraceableReason()) from None
+        raise
     return _output(f, 0), _output(f, 1)
 
 
@@ -354,14 +342,10 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     retried = None
     try:
         stages_out = front(options)
-    except TriChartError as error:
-        if not retry_slivers or options.get("remove_slivers") or \
-                not str(error).startswith("paths:"):
+    except UntraceableError as error:
+        if not retry_slivers or options.get("remove_slivers"):
             raise
-        message = str(error)
-        where = message.find("tracePaths: ")
-        reason = message[where + len("tracePaths: "):] if where >= 0 else message
-        retried = (f"the paths could not be traced ({reason.split(';')[0]}); built again "
+        retried = (f"the paths could not be traced ({error.reason}); built again "
                    "with the slivers removed (--remove-slivers)")
         options["remove_slivers"] = True
         stages_out = front(options)

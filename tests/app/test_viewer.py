@@ -301,7 +301,7 @@ def test_preparation_says_what_to_check_for_a_surface_the_base_complex_refuses(t
     assert r.returncode == 0, r.stderr
     text = summary(r.stdout, "Preparation")
     assert "Not a closed, oriented manifold" in text, text
-    assert "check FillHoles (3 boundary edges)" in text, text
+    assert "3 boundary edges (close the holes: FillHoles" in text, text
     # The bunny as it is needs nothing.
     r = viewer(BUNNY, "--stage", "preparation", "--screenshot", tmp_path / "b.png")
     assert "Not a closed" not in summary(r.stdout, "Preparation")

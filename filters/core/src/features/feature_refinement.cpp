@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/features/feature_refinement.h"
 
+#include "detail/geometry2d.h"
+
 #include "tc/common/errors.h"
 #include "tc/common/mesh_topology.h"
 #include "tc/common/parallel.h"
@@ -24,7 +26,7 @@ namespace tc
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 double distance(const TriMesh& mesh, int64_t a, int64_t b)
 {

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/gim/base_complex.h"
 
+#include "detail/geometry2d.h"
+#include "detail/half_edge.h"
+#include "detail/quadric.h"
+#include "detail/star_map.h"
 #include "detail/vec3.h"
 
 #include "tc/common/errors.h"
@@ -41,7 +45,7 @@ namespace tc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 /// BaseComplexOptions::maxError stops the simplification only once the base complex has at most
 /// one face per this many input points (64 input triangles each on average): under the geometry
 /// images' default budget of one sample per point, a chart then averages 32 samples (level 3
@@ -52,14 +56,8 @@ constexpr int64_t kPointsPerBoundedFace = 32;
 /// the z^a map and of the 2x2 solves); beyond it the point is snapped (MAPS flip repair).
 constexpr double kInsideSlack = 1e-12;
 
-inline int32_t nextHe(int32_t h)
-{
-  return h % 3 == 2 ? h - 2 : h + 1;
-}
-inline int32_t prevHe(int32_t h)
-{
-  return h % 3 == 0 ? h + 2 : h - 1;
-}
+using detail::nextHe;
+using detail::prevHe;
 
 using detail::cross;
 using detail::dot;
@@ -67,28 +65,9 @@ using detail::norm;
 using detail::sub;
 using detail::V3;
 
-struct P2
-{
-  double x, y;
-};
-inline double orient(const P2& a, const P2& b, const P2& c)
-{
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-/// Barycentrics of p in triangle (a, b, c); false for a degenerate triangle.
-inline bool barycentric(const P2& p, const P2& a, const P2& b, const P2& c, double w[3])
-{
-  const double d = orient(a, b, c);
-  if (!(d > 0.0))
-  {
-    return false;
-  }
-  w[1] = orient(a, p, c) / d;
-  w[2] = orient(a, b, p) / d;
-  w[0] = 1.0 - w[1] - w[2];
-  return true;
-}
+using detail::barycentric;
+using detail::orient;
+using detail::P2;
 
 /// Closest point of triangle (a, b, c) to p, as barycentrics, and its squared distance.
 double closestBarycentric(const P2& p, const P2& a, const P2& b, const P2& c, double w[3])
@@ -122,47 +101,8 @@ double closestBarycentric(const P2& p, const P2& a, const P2& b, const P2& c, do
   return best;
 }
 
-/// Symmetric 4x4 quadric of Garland and Heckbert (1997), upper triangle: a00 a01 a02 a11 a12 a22
-/// b0 b1 b2 c, so that Q(p) = p^T A p + 2 b.p + c.
-struct Quadric
-{
-  double q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
-
-  void addPlane(const V3& n, double d, double w)
-  {
-    q[0] += w * n.x * n.x;
-    q[1] += w * n.x * n.y;
-    q[2] += w * n.x * n.z;
-    q[3] += w * n.y * n.y;
-    q[4] += w * n.y * n.z;
-    q[5] += w * n.z * n.z;
-    q[6] += w * d * n.x;
-    q[7] += w * d * n.y;
-    q[8] += w * d * n.z;
-    q[9] += w * d * d;
-  }
-  void add(const Quadric& o)
-  {
-    for (int i = 0; i < 10; ++i)
-    {
-      q[i] += o.q[i];
-    }
-  }
-};
-
-/// (Qa + Qb)(p) without forming the sum.
-inline double evalSum(const Quadric& a, const Quadric& b, const V3& p)
-{
-  double s[10];
-  for (int i = 0; i < 10; ++i)
-  {
-    s[i] = a.q[i] + b.q[i];
-  }
-  const double e = s[0] * p.x * p.x + 2 * s[1] * p.x * p.y + 2 * s[2] * p.x * p.z +
-    s[3] * p.y * p.y + 2 * s[4] * p.y * p.z + s[5] * p.z * p.z +
-    2 * (s[6] * p.x + s[7] * p.y + s[8] * p.z) + s[9];
-  return std::max(0.0, e);
-}
+using detail::evalSum;
+using detail::Quadric;
 
 /// Triangle shape 4 sqrt(3) area / (sum of squared sides): 1 equilateral, 0 degenerate.
 inline double shapeQuality(const V3& a, const V3& b, const V3& c, const V3& n)
@@ -1537,30 +1477,8 @@ const Simplifier::StarChart& Simplifier::star(int32_t s, bool chart) const
   }
   StarValid_[s] = 2;
   star.z.clear();
-  const size_t d = star.ring.size();
-  StarTheta_.assign(d, 0.0);
-  StarRadius_.assign(d, 0.0);
-  double total = 0.0;
-  const V3 ps = this->pos(s);
-  for (size_t i = 0; i < d; ++i)
-  {
-    const V3 a = sub(this->pos(star.ring[i]), ps);
-    const V3 b = sub(this->pos(star.ring[(i + 1) % d]), ps);
-    StarTheta_[i] = std::atan2(norm(cross(a, b)), dot(a, b));
-    StarRadius_[i] = norm(a);
-    total += StarTheta_[i];
-  }
-  const double power = 2.0 * kPi / total;
-  const bool embeds =
-    std::all_of(StarTheta_.begin(), StarTheta_.end(), [&](double t) { return power * t < kPi; });
-  double phi = 0.0;
-  for (size_t i = 0; i < d; ++i)
-  {
-    const double angle = embeds ? power * phi : 2.0 * kPi * static_cast<double>(i) / d;
-    const double rho = embeds ? std::pow(StarRadius_[i] / StarRadius_[0], power) : 1.0;
-    star.z.push_back({ rho * std::cos(angle), rho * std::sin(angle) });
-    phi += StarTheta_[i];
-  }
+  detail::flattenStar(this->pos(s), star.ring.size(),
+    [&](size_t i) { return this->pos(star.ring[i]); }, StarTheta_, StarRadius_, star.z);
   return star;
 }
 

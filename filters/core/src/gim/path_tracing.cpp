@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/gim/path_tracing.h"
 
+#include "detail/geometry2d.h"
+#include "detail/half_edge.h"
+#include "detail/star_map.h"
 #include "detail/vec3.h"
 
 #include "tc/common/errors.h"
@@ -49,7 +52,7 @@ namespace tc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 /// A barycentric below this (the other two above it) puts the point on the base edge: the path
 /// then passes through the point instead of cutting slivers off its triangles (a point 5e-9 off
 /// an edge on fandisk left pieces of 1e-14 of their triangle). MAPS places feature vertices
@@ -62,23 +65,9 @@ constexpr double kSnap = 1e-6;
 /// Most base edges one input edge may cross (in a star: the valence of its centre).
 constexpr int kMaxCrossings = 64;
 
-inline int32_t nextHe(int32_t h)
-{
-  return h % 3 == 2 ? h - 2 : h + 1;
-}
-inline int32_t prevHe(int32_t h)
-{
-  return h % 3 == 0 ? h + 2 : h - 1;
-}
-
-struct P2
-{
-  double x, y;
-};
-inline double cross(const P2& a, const P2& b)
-{
-  return a.x * b.y - a.y * b.x;
-}
+using detail::nextHe;
+using detail::prevHe;
+using detail::P2;
 
 using detail::cross;
 using detail::dot;
@@ -554,6 +543,7 @@ void Tracer::buildBase()
     ++facesAt[x];
   }
   Stars_.assign(NB_, StarChart());
+  std::vector<double> theta, radius; // scratch of flattenStar
   for (int32_t s = 0; s < NB_; ++s)
   {
     StarChart& star = Stars_[s];
@@ -585,28 +575,9 @@ void Tracer::buildBase()
         " do not form one fan of at least 3; rebuild the base complex");
     }
     const size_t n = star.ring.size();
-    std::vector<double> theta(n), radius(n);
-    const V3 ps = this->pos(Base_.baseVertices[s]);
-    double total = 0.0;
-    for (size_t i = 0; i < n; ++i)
-    {
-      const V3 u = sub(this->pos(Base_.baseVertices[star.ring[i]]), ps);
-      const V3 v = sub(this->pos(Base_.baseVertices[star.ring[(i + 1) % n]]), ps);
-      theta[i] = std::atan2(norm(cross(u, v)), dot(u, v));
-      radius[i] = norm(u);
-      total += theta[i];
-    }
-    const double power = 2.0 * kPi / total;
-    const bool embeds = std::isfinite(power) && radius[0] > 0 &&
-      std::all_of(theta.begin(), theta.end(), [&](double t) { return power * t < kPi; });
-    double phi = 0.0;
-    for (size_t i = 0; i < n; ++i)
-    {
-      const double angle = embeds ? power * phi : 2.0 * kPi * static_cast<double>(i) / n;
-      const double rho = embeds ? std::pow(radius[i] / radius[0], power) : 1.0;
-      star.z.push_back({ rho * std::cos(angle), rho * std::sin(angle) });
-      phi += theta[i];
-    }
+    detail::flattenStar(this->pos(Base_.baseVertices[s]), n,
+      [&](size_t i) { return this->pos(Base_.baseVertices[star.ring[i]]); }, theta, radius,
+      star.z);
     // The faces across the link, each similar to its 3D triangle, outside the link edge.
     for (size_t i = 0; i < n; ++i)
     {
@@ -1682,8 +1653,9 @@ PatchMesh Tracer::run(const Progress& progress)
   {
     if (!pieces[i].error.empty())
     {
-      throw InputError("tracePaths: input triangle " + std::to_string(slow[i]) +
-        " cannot be cut along the base edges: " + pieces[i].error + rebuild);
+      throw UntraceableError("input triangle " + std::to_string(slow[i]) +
+          " cannot be cut along the base edges: " + pieces[i].error,
+        rebuild);
     }
   }
 
@@ -1832,8 +1804,9 @@ PatchMesh Tracer::run(const Progress& progress)
   {
     if (!pathError[e].empty())
     {
-      throw InputError("tracePaths: the path of base edge " + this->edgeName(e) +
-        " cannot be traced: " + pathError[e] + rebuild);
+      throw UntraceableError(
+        "the path of base edge " + this->edgeName(e) + " cannot be traced: " + pathError[e],
+        rebuild);
     }
   }
   out.pathOffsets.assign(1, 0);

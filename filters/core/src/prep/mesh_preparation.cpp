@@ -954,6 +954,64 @@ bool PreparationReport::changed() const
     filledHoles > 0 || droppedFragments > 0 || sliverPoints > 0 || reshapedTriangles > 0;
 }
 
+bool closedManifold(const PreparationReport& report, const PreparationOptions& options)
+{
+  return options.orient && report.closedComponents == report.components &&
+    report.nonOrientableComponents == 0 &&
+    (options.splitNonManifold || report.nonManifoldEdges + report.nonManifoldVertices == 0);
+}
+
+std::string closedManifoldRepairs(const PreparationReport& report, const PreparationOptions& options)
+{
+  if (closedManifold(report, options))
+  {
+    return {};
+  }
+  std::vector<std::string> problems;
+  if (!options.splitNonManifold && report.nonManifoldEdges + report.nonManifoldVertices > 0)
+  {
+    std::string found;
+    if (report.nonManifoldEdges > 0)
+    {
+      found = plural(report.nonManifoldEdges, "non-manifold edge", "non-manifold edges");
+    }
+    if (report.nonManifoldVertices > 0)
+    {
+      found += (found.empty() ? "" : " and ") +
+        plural(report.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices");
+    }
+    problems.push_back(found + " (split them: SplitNonManifold, trichart build --split-non-manifold)");
+  }
+  if (report.nonOrientableComponents > 0)
+  {
+    problems.push_back(plural(report.nonOrientableComponents,
+                         "non-orientable (Moebius-like) component",
+                         "non-orientable (Moebius-like) components") +
+      ", which no orientation fixes (repair it in a mesh editor)");
+  }
+  if (report.boundaryEdges > 0)
+  {
+    const std::string edges = plural(report.boundaryEdges, "boundary edge", "boundary edges");
+    problems.push_back(!options.fillHoles
+        ? edges + " (close the holes: FillHoles, trichart build --fill-holes)"
+        : plural(report.openHoles, "hole", "holes") + " left open, " + edges +
+          " in all (FillHoles closes holes of up to MaxHoleEdges = " +
+          std::to_string(options.maxHoleEdges) +
+          " edges with a manifold patch: raise it, 0 for any size, trichart build "
+          "--max-hole-edges)");
+  }
+  if (!options.orient)
+  {
+    problems.push_back("orientation unchecked (turn Orient on)");
+  }
+  std::string text;
+  for (const std::string& p : problems)
+  {
+    text += (text.empty() ? "" : "; ") + p;
+  }
+  return text.empty() ? "unknown" : text;
+}
+
 std::string PreparationReport::text() const
 {
   std::string text;

@@ -19,6 +19,26 @@ public:
   }
 };
 
+/// The base edges cannot be traced onto the mesh: the MAPS parameterization is not one-to-one
+/// somewhere, which slivers (needles and caps of scans and CAD tessellations) cause. Every face
+/// (CLI, Python, viewer) answers it by removing slivers in the preparation and building again,
+/// and reads reason() instead of parsing the message.
+class UntraceableError : public InputError
+{
+public:
+  /// @param reason  what could not be traced, for a note ("input triangle 785 cannot be ...")
+  /// @param advice  the rest of the message: why, and what to change
+  UntraceableError(const std::string& reason, const std::string& advice)
+    : InputError("tracePaths: " + reason + advice)
+    , Reason(reason)
+  {
+  }
+  const std::string& reason() const { return this->Reason; }
+
+private:
+  std::string Reason;
+};
+
 /// The user aborted a long computation through its progress callback.
 class Aborted : public std::runtime_error
 {

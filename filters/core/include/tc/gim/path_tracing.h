@@ -41,8 +41,9 @@ struct PatchMesh
 /// @param[in] mesh  the mesh buildBaseComplex was given (closed, manifold, oriented)
 /// @param[in] base  its base complex and MAPS parameterization (invalidTriangles should be 0; a
 ///                  triangle the parameterization folds may make a path impossible to trace)
-/// @throws InputError when the arrays do not match the mesh, or a path cannot be traced (the
-///         message names the base edge and what to change, e.g. a coarser or finer target)
+/// @throws InputError when the arrays do not match the mesh
+/// @throws UntraceableError when a path cannot be traced or an input triangle cannot be cut
+///         along the paths (the message names the base edge or triangle and what to change)
 PatchMesh tracePaths(
   const TriMesh& mesh, const BaseComplexResult& base, const Progress& progress = {});
 } // namespace tc

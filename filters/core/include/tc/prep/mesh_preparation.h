@@ -109,6 +109,17 @@ struct PreparationResult
   PreparationReport report;
 };
 
+/// True if a prepared mesh is what the base complex and the stages after it need: every
+/// component closed, manifold (nothing left unsplit) and consistently oriented (false with
+/// orient off, which leaves the orientation unchecked).
+bool closedManifold(const PreparationReport& report, const PreparationOptions& options);
+
+/// What keeps a prepared mesh from being a closed, oriented manifold, each defect with its count
+/// and the option that repairs it (property and `trichart build` flag), joined by "; ", e.g.
+/// "3 boundary edges (close the holes: FillHoles, trichart build --fill-holes)"; "" when
+/// closedManifold() holds. Every face (CLI, Python, viewer) shows this text.
+std::string closedManifoldRepairs(const PreparationReport& report, const PreparationOptions& options);
+
 /// Cleans a polygon soup into a triangle mesh, in this order: validate; merge duplicate points;
 /// triangulate polygons (ear clipping in the plane of the Newell normal); drop degenerate and
 /// duplicate triangles; find non-manifold edges and vertices (and split them if asked); orient;
