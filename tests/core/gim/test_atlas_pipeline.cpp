@@ -170,5 +170,5 @@ TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
 }
 
 INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh,
-  ::testing::Values("bunny_npm", "cube", "fandisk", "elephant", "cow", "homer", "couplingdown"),
+  ::testing::ValuesIn(tctest::pipelineMeshes()),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });

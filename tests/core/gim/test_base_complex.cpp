@@ -575,7 +575,8 @@ TEST_P(BaseComplexOnMesh, ReportsNoInvalidTriangle)
 }
 
 INSTANTIATE_TEST_SUITE_P(BaseComplex, BaseComplexOnMesh,
-  ::testing::Values("bunny_npm", "elephant", "cow", "homer", "fandisk", "couplingdown"),
+  // The cube: every vertex is a corner, so nothing collapses.
+  ::testing::ValuesIn(tctest::pipelineMeshesWithout("cube")),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 namespace

@@ -648,8 +648,8 @@ INSTANTIATE_TEST_SUITE_P(PathTracing, PathTracingOnMesh,
   // rotor: a valence-3 base vertex whose input fan wraps round it (see route() in the source);
   // armadillo_without_features: see armadilloWithoutFeatures(); bunny_glmark2_with_features:
   // see bunnyGlmark2WithFeatures()
-  ::testing::Values("bunny_npm", "cube", "fandisk", "elephant", "cow", "homer", "couplingdown",
-    "rotor", "armadillo_without_features", "bunny_glmark2_with_features"),
+  ::testing::ValuesIn(tctest::pipelineMeshesAnd(
+    { "rotor", "armadillo_without_features", "bunny_glmark2_with_features" })),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 namespace
