@@ -100,23 +100,6 @@ static_assert(
 static_assert(sizeof(kStageLabels) / sizeof(*kStageLabels) == tcViewerWindow::StageCount,
   "one label per stage");
 
-/// A rainbow over the array's range, for arrays that are not signed curvatures.
-void RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
-{
-  double range[2];
-  values->GetRange(range, component);
-  if (range[1] <= range[0])
-  {
-    range[1] = range[0] + 1.0;
-  }
-  lut->SetNumberOfTableValues(256);
-  lut->SetHueRange(0.667, 0.0);
-  lut->SetSaturationRange(1.0, 1.0);
-  lut->SetValueRange(1.0, 1.0);
-  lut->SetTableRange(range);
-  lut->ForceBuild();
-}
-
 /// Trackball camera, except that the left button pans the flat atlas picture instead of turning
 /// it out of its plane.
 class tcViewerInteractorStyle : public vtkInteractorStyleTrackballCamera
@@ -1243,7 +1226,9 @@ void tcViewerWindow::ShowAtlasPicture(vtkMultiBlockDataSet* atlas)
   }
   auto picture = vtkSmartPointer<vtkImageData>::New();
   picture->SetDimensions(finest->GetDimensions());
-  picture->GetPointData()->SetScalars(tcvtk::NormalColors(normals));
+  vtkNew<vtkUnsignedCharArray> colors;
+  tcColorMaps::NormalColors(normals, colors);
+  picture->GetPointData()->SetScalars(colors);
   this->AtlasPicture->GetMapper()->SetInputData(picture);
   if (!this->RenderWindow->HasRenderer(this->AtlasRenderer))
   {
@@ -1611,15 +1596,15 @@ void tcViewerWindow::SetColorArray(const QString& name)
   const bool labels = arrayName.endsWith("Id");
   if (curvature)
   {
-    tcvtk::DivergingColors(lut, values, 0);
+    tcColorMaps::DivergingColors(lut, values, 0);
   }
   else if (labels)
   {
-    tcvtk::LabelColors(lut, values);
+    tcColorMaps::LabelColors(lut, values);
   }
   else
   {
-    RangeColors(lut, values, 0);
+    tcColorMaps::RangeColors(lut, values, 0);
   }
   lut->SetVectorModeToComponent();
   lut->SetVectorComponent(0);

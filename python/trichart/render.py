@@ -1,4 +1,5 @@
-"""Offscreen pictures of TriChart stages (used by the CLI and the tests)."""
+"""Offscreen pictures of TriChart stages (used by the CLI and the tests), in the colour maps of
+tcColorMaps, the ones the viewer and the C++ image tests use."""
 import os
 import tempfile
 
@@ -10,34 +11,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRendere
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text of the scalar bar)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
 
-
-def symmetric_range(array, fraction=0.95):
-    """A colour range symmetric about 0 that holds `fraction` of the values of `array`."""
-    import numpy
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    values = numpy.abs(vtk_to_numpy(array)).ravel()
-    values = values[numpy.isfinite(values)]
-    limit = float(numpy.quantile(values, fraction)) if values.size else 0.0
-    limit = limit if limit > 0.0 else 1.0
-    return (-limit, limit)
-
-
-def diverging_lut(lo, hi):
-    """Blue (concave) - white - red (convex)."""
-    lut = vtkLookupTable()
-    lut.SetNumberOfTableValues(256)
-    lut.SetTableRange(lo, hi)
-    for i in range(256):
-        t = i / 255.0
-        if t < 0.5:
-            s = t / 0.5
-            lut.SetTableValue(i, 0.23 + 0.77 * s, 0.30 + 0.70 * s, 0.75 + 0.25 * s, 1.0)
-        else:
-            s = (t - 0.5) / 0.5
-            lut.SetTableValue(i, 1.0 - 0.29 * s, 1.0 - 0.98 * s, 1.0 - 0.85 * s, 1.0)
-    lut.Build()
-    return lut
+from .TriChartRendering import tcColorMaps
 
 
 def add_lines(renderer, lines, width):
@@ -75,7 +49,8 @@ def _window(renderer, size):
 def _label_mapper(data, array, cell):
     """A mapper colouring `data` by the integer `array` (cell or point data)."""
     values = (data.GetCellData() if cell else data.GetPointData()).GetArray(array)
-    count = int(values.GetRange()[1]) + 1 if values is not None else 1
+    lut = vtkLookupTable()
+    tcColorMaps.LabelColors(lut, values)
     mapper = vtkPolyDataMapper()
     mapper.SetInputData(data)
     if cell:
@@ -83,15 +58,15 @@ def _label_mapper(data, array, cell):
     else:
         mapper.SetScalarModeToUsePointFieldData()
     mapper.SelectColorArray(array)
-    mapper.SetLookupTable(cluster_colors(count))
+    mapper.SetLookupTable(lut)
     mapper.UseLookupTableScalarRangeOn()
     return mapper
 
 
 def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600)):
     """A render window with `surface` coloured by `array`, crest lines on top, and a legend."""
-    lo, hi = symmetric_range(surface.GetPointData().GetArray(array))
-    lut = diverging_lut(lo, hi)
+    lut = vtkLookupTable()
+    tcColorMaps.DivergingColors(lut, surface.GetPointData().GetArray(array), 0)
     mapper = vtkPolyDataMapper()
     mapper.SetInputData(surface)
     mapper.SetScalarModeToUsePointFieldData()
@@ -138,20 +113,6 @@ def write_png(window, path):
 def render_curvature(surface, crest, path, array="MeanCurvature"):
     """Save a picture of the curvature stage to `path`."""
     return write_png(curvature_scene(surface, crest, array), path)
-
-
-def cluster_colors(count):
-    """A lookup table of `count` well-separated colours (golden-ratio hues)."""
-    import colorsys
-
-    lut = vtkLookupTable()
-    lut.SetNumberOfTableValues(max(count, 1))
-    lut.SetTableRange(0, max(count - 1, 1))
-    for i in range(max(count, 1)):
-        r, g, b = colorsys.hsv_to_rgb((i * 0.618033988749895) % 1.0, 0.55, 0.95)
-        lut.SetTableValue(i, r, g, b, 1.0)
-    lut.Build()
-    return lut
 
 
 def features_scene(features, lines=None, corners=None, size=(800, 600)):

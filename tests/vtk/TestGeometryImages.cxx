@@ -160,7 +160,8 @@ int TestGeometryImages(int argc, char* argv[])
   vtkDataArray* normals = finest->GetPointData()->GetArray(tc::kAtlasNormal);
   vtkNew<vtkImageData> picture;
   picture->SetDimensions(dims);
-  vtkSmartPointer<vtkUnsignedCharArray> colours = tcvtk::NormalColors(normals);
+  vtkNew<vtkUnsignedCharArray> colours;
+  tcColorMaps::NormalColors(normals, colours);
   picture->GetPointData()->SetScalars(colours);
   vtkNew<vtkImageActor> actor;
   actor->GetMapper()->SetInputData(picture);

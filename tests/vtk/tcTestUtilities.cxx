@@ -134,7 +134,7 @@ vtkSmartPointer<vtkRenderWindow> CurvatureScene(
 {
   vtkDataArray* values = surface->GetPointData()->GetArray(array);
   vtkNew<vtkLookupTable> lut;
-  tcvtk::DivergingColors(lut, values);
+  tcColorMaps::DivergingColors(lut, values);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(surface);
   mapper->SetScalarModeToUsePointFieldData();
@@ -195,7 +195,7 @@ vtkSmartPointer<vtkRenderer> LabelRenderer(vtkPolyData* surface, const char* lab
   vtkDataArray* cellValues = surface->GetCellData()->GetArray(labels);
   vtkDataArray* values = cellValues ? cellValues : surface->GetPointData()->GetArray(labels);
   vtkNew<vtkLookupTable> lut;
-  tcvtk::LabelColors(lut, values);
+  tcColorMaps::LabelColors(lut, values);
   vtkSmartPointer<vtkRenderer> renderer =
     ArrayRenderer(surface, labels, cellValues != nullptr, lut, viewport);
   AddLines(renderer, lines, 3.0);

@@ -4,15 +4,21 @@
 #include <vtkDataArray.h>
 #include <vtkLookupTable.h>
 #include <vtkMath.h>
+#include <vtkObjectFactory.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace tcvtk
+vtkStandardNewMacro(tcColorMaps);
+
+void tcColorMaps::PrintSelf(ostream& os, vtkIndent indent)
 {
-void DivergingColors(vtkLookupTable* lut, vtkDataArray* values, int component)
+  this->Superclass::PrintSelf(os, indent);
+}
+
+void tcColorMaps::DivergingColors(vtkLookupTable* lut, vtkDataArray* values, int component)
 {
   std::vector<double> magnitudes(values ? values->GetNumberOfTuples() : 0);
   for (size_t i = 0; i < magnitudes.size(); ++i)
@@ -44,7 +50,7 @@ void DivergingColors(vtkLookupTable* lut, vtkDataArray* values, int component)
   lut->Build();
 }
 
-void LabelColors(vtkLookupTable* lut, vtkDataArray* values)
+void tcColorMaps::LabelColors(vtkLookupTable* lut, vtkDataArray* values)
 {
   const int count = values ? std::max(1, static_cast<int>(values->GetRange()[1]) + 1) : 1;
   lut->SetNumberOfTableValues(count);
@@ -57,9 +63,28 @@ void LabelColors(vtkLookupTable* lut, vtkDataArray* values)
   }
   lut->Build();
 }
-vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals)
+
+void tcColorMaps::RangeColors(vtkLookupTable* lut, vtkDataArray* values, int component)
 {
-  auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  double range[2] = { 0.0, 1.0 };
+  if (values)
+  {
+    values->GetRange(range, component);
+  }
+  if (range[1] <= range[0])
+  {
+    range[1] = range[0] + 1.0;
+  }
+  lut->SetNumberOfTableValues(256);
+  lut->SetHueRange(0.667, 0.0);
+  lut->SetSaturationRange(1.0, 1.0);
+  lut->SetValueRange(1.0, 1.0);
+  lut->SetTableRange(range);
+  lut->ForceBuild();
+}
+
+void tcColorMaps::NormalColors(vtkDataArray* normals, vtkUnsignedCharArray* colors)
+{
   colors->SetNumberOfComponents(3);
   colors->SetNumberOfTuples(normals->GetNumberOfTuples());
   for (vtkIdType t = 0; t < normals->GetNumberOfTuples(); ++t)
@@ -73,7 +98,4 @@ vtkSmartPointer<vtkUnsignedCharArray> NormalColors(vtkDataArray* normals)
         static_cast<unsigned char>(empty ? 40 : 127.5 + 127 * std::max(-1.0, std::min(1.0, n[c]))));
     }
   }
-  return colors;
 }
-
-} // namespace tcvtk
