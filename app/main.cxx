@@ -6,24 +6,34 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
-#include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <vtkLogger.h>
 #include <vtkOutputWindow.h>
 
 #include <iostream>
+#include <limits>
 #include <vector>
 
-int main(int argc, char* argv[])
+namespace
 {
-  // The VTK widget needs its surface format set before the application exists.
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
-  QApplication app(argc, argv);
-  QApplication::setApplicationName("trichart-viewer");
+/// What the command line asks for.
+struct ViewerOptions
+{
+  QStringList Files;
+  std::vector<int> Stages; ///< at least one
+  bool Screenshot = false;
+  QString ScreenshotPattern; ///< holds {stage} when there are several stages
+  bool Array = false;
+  QString ArrayName;
+  bool SaveAtlas = false;
+  QString AtlasPath;
+  int Level = -1;
+  int Instances = 1;
+};
 
-  const QString stageList = tcViewerWindow::StageNames().join(", ");
-  QCommandLineParser parser;
+void AddOptions(QCommandLineParser& parser, const QString& stageList)
+{
   parser.setApplicationDescription("TriChart viewer: inspect every stage of the pipeline.");
   parser.addHelpOption();
   parser.addPositionalArgument("files",
@@ -32,35 +42,32 @@ int main(int argc, char* argv[])
     "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas or "
     "lod).",
     "[files...]");
-  QCommandLineOption screenshot("screenshot",
+  parser.addOption(QCommandLineOption("screenshot",
     "Run up to the stage, save a PNG of the window and exit. With several stages the file name "
     "holds {stage}, replaced by each stage's name.",
-    "file");
-  QCommandLineOption stage("stage",
+    "file"));
+  parser.addOption(QCommandLineOption("stage",
     "Stage to show: " + stageList +
       " (default curvature); with --screenshot, several separated by commas, each framed as if "
       "shown alone (one pipeline run for all).",
-    "name", "curvature");
-  QCommandLineOption array("array", "Colour the surface by this array.", "name");
-  QCommandLineOption level(
-    "level", "Level of the reconstruction (-1: each chart's finest, the default).", "n", "-1");
-  QCommandLineOption saveAtlas("save-atlas",
+    "name", "curvature"));
+  parser.addOption(QCommandLineOption("array", "Colour the surface by this array.", "name"));
+  parser.addOption(QCommandLineOption(
+    "level", "Level of the reconstruction (-1: each chart's finest, the default).", "n", "-1"));
+  parser.addOption(QCommandLineOption("save-atlas",
     "Write the atlas of the last file (built, or the one opened) as .exr, as File > Save atlas "
     "does.",
-    "file");
-  QCommandLineOption instances("instances",
+    "file"));
+  parser.addOption(QCommandLineOption("instances",
     "Instances of the lod stage's crowd, on a square grid of the ground (1 to 2500, default 1).",
-    "n", "1");
-  parser.addOption(screenshot);
-  parser.addOption(stage);
-  parser.addOption(array);
-  parser.addOption(level);
-  parser.addOption(saveAtlas);
-  parser.addOption(instances);
-  parser.process(app);
+    "n", "1"));
+}
 
-  std::vector<int> stages;
-  for (const QString& name : parser.value(stage).split(','))
+/// The stages of --stage, in order; false (said on stderr) for an unknown or missing name.
+bool ReadStages(
+  const QCommandLineParser& parser, const QString& stageList, std::vector<int>& stages)
+{
+  for (const QString& name : parser.value("stage").split(','))
   {
     if (name.trimmed().isEmpty())
     {
@@ -71,7 +78,7 @@ int main(int argc, char* argv[])
     {
       std::cerr << "trichart-viewer: unknown stage '" << name.trimmed().toStdString() << "'; use "
                 << stageList.toStdString() << "\n";
-      return 2;
+      return false;
     }
     stages.push_back(index);
   }
@@ -79,38 +86,61 @@ int main(int argc, char* argv[])
   {
     std::cerr << "trichart-viewer: --stage needs a stage name; use " << stageList.toStdString()
               << "\n";
-    return 2;
+    return false;
   }
-  const QString shotPattern = parser.value(screenshot);
-  if (stages.size() > 1 && !shotPattern.contains("{stage}"))
+  return true;
+}
+
+/// The integer of option `name`, from `lo` to `hi`; false (said on stderr, with `rule`) if not.
+bool ReadInteger(
+  const QCommandLineParser& parser, const char* name, int lo, int hi, const char* rule, int& value)
+{
+  bool ok = false;
+  value = parser.value(name).toInt(&ok);
+  if (!ok || value < lo || value > hi)
+  {
+    std::cerr << "trichart-viewer: --" << name << " needs " << rule << ", not '"
+              << parser.value(name).toStdString() << "'\n";
+    return false;
+  }
+  return true;
+}
+
+/// Reads the command line (--help exits here); false if it is refused (said on stderr).
+bool ReadOptions(const QApplication& app, ViewerOptions& options)
+{
+  const QString stageList = tcViewerWindow::StageNames().join(", ");
+  QCommandLineParser parser;
+  AddOptions(parser, stageList);
+  parser.process(app);
+  if (!ReadStages(parser, stageList, options.Stages))
+  {
+    return false;
+  }
+  options.Screenshot = parser.isSet("screenshot");
+  options.ScreenshotPattern = parser.value("screenshot");
+  if (options.Stages.size() > 1 && !options.ScreenshotPattern.contains("{stage}"))
   {
     std::cerr << "trichart-viewer: several stages need --screenshot FILE with {stage} in FILE\n";
-    return 2;
+    return false;
   }
-
-  bool levelOk = false;
-  const int levelValue = parser.value(level).toInt(&levelOk);
-  if (!levelOk || levelValue < -1)
+  if (!ReadInteger(
+        parser, "level", -1, std::numeric_limits<int>::max(), "an integer >= -1", options.Level) ||
+    !ReadInteger(parser, "instances", 1, 2500, "an integer from 1 to 2500", options.Instances))
   {
-    std::cerr << "trichart-viewer: --level needs an integer >= -1, not '"
-              << parser.value(level).toStdString() << "'\n";
-    return 2;
+    return false;
   }
+  options.Array = parser.isSet("array");
+  options.ArrayName = parser.value("array");
+  options.SaveAtlas = parser.isSet("save-atlas");
+  options.AtlasPath = parser.value("save-atlas");
+  options.Files = parser.positionalArguments();
+  return true;
+}
 
-  bool instancesOk = false;
-  const int instancesValue = parser.value(instances).toInt(&instancesOk);
-  if (!instancesOk || instancesValue < 1 || instancesValue > 2500)
-  {
-    std::cerr << "trichart-viewer: --instances needs an integer from 1 to 2500, not '"
-              << parser.value(instances).toStdString() << "'\n";
-    return 2;
-  }
-
-  tcViewerWindow window;
-  window.SetReconstructionLevel(levelValue);
-  window.SetInstances(instancesValue);
-  const bool batch = parser.isSet(screenshot) || parser.isSet(saveAtlas);
-  window.SetBatchMode(batch);
+/// Sends VTK's messages where the mode wants them.
+void RouteLogs(bool batch)
+{
   if (batch)
   {
     // Errors are reported once, by the window, on stderr.
@@ -122,57 +152,88 @@ int main(int argc, char* argv[])
     // Filters log what they do at INFO level; the window shows what matters.
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_WARNING);
   }
+}
+
+/// Saves a screenshot of each stage asked for (the first one is shown by OpenFile; the others
+/// run on from it, each framed anew); false if one fails.
+bool SaveScreenshots(tcViewerWindow& window, const ViewerOptions& options, bool opened)
+{
+  bool ok = true;
+  for (size_t k = 0; k < options.Stages.size(); ++k)
+  {
+    if (k > 0 && opened)
+    {
+      ok = window.ShowStage(options.Stages[k]) && ok;
+      window.ResetCamera();
+      if (options.Array)
+      {
+        window.SetColorArray(options.ArrayName);
+      }
+    }
+    const QString path = QString(options.ScreenshotPattern)
+                           .replace("{stage}", tcViewerWindow::StageNames()[options.Stages[k]]);
+    const bool saved = window.SaveScreenshot(path);
+    if (!saved)
+    {
+      std::cerr << "trichart-viewer: cannot write " << path.toStdString() << "\n";
+    }
+    ok = ok && saved;
+  }
+  return ok;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  // The VTK widget needs its surface format set before the application exists.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("trichart-viewer");
+  ViewerOptions options;
+  if (!ReadOptions(app, options))
+  {
+    return 2;
+  }
+
+  tcViewerWindow window;
+  window.SetReconstructionLevel(options.Level);
+  window.SetInstances(options.Instances);
+  const bool batch = options.Screenshot || options.SaveAtlas;
+  window.SetBatchMode(batch);
+  RouteLogs(batch);
   window.show();
   QApplication::processEvents();
-
-  const QStringList files = parser.positionalArguments();
-  if (batch && files.isEmpty())
+  if (batch && options.Files.isEmpty())
   {
     std::cerr << "trichart-viewer: --screenshot and --save-atlas need a mesh or atlas file\n";
     return 2;
   }
+
   // Each file is opened as if dropped on the window in turn: a file that fails leaves the
   // window usable for the next one.
   bool ok = true;
   bool opened = false;
-  for (const QString& file : files)
+  for (const QString& file : options.Files)
   {
-    opened = window.OpenFile(file, stages.front());
+    opened = window.OpenFile(file, options.Stages.front());
     ok = ok && opened;
   }
-  if (opened && parser.isSet(array))
+  if (opened && options.Array)
   {
-    window.SetColorArray(parser.value(array));
+    window.SetColorArray(options.ArrayName);
   }
-  if (batch)
+  if (!batch)
   {
-    for (size_t k = 0; parser.isSet(screenshot) && k < stages.size(); ++k)
-    {
-      // The first stage is shown by OpenFile; the others run on from it, each framed anew.
-      if (k > 0 && opened)
-      {
-        ok = window.ShowStage(stages[k]) && ok;
-        window.ResetCamera();
-        if (parser.isSet(array))
-        {
-          window.SetColorArray(parser.value(array));
-        }
-      }
-      const QString path =
-        QString(shotPattern).replace("{stage}", tcViewerWindow::StageNames()[stages[k]]);
-      const bool saved = window.SaveScreenshot(path);
-      if (!saved)
-      {
-        std::cerr << "trichart-viewer: cannot write " << path.toStdString() << "\n";
-      }
-      ok = ok && saved;
-    }
-    // Saved last, so that the pictures do not show the status message of the save.
-    if (opened && parser.isSet(saveAtlas))
-    {
-      ok = window.SaveAtlas(parser.value(saveAtlas)) && ok;
-    }
-    return ok ? 0 : 1;
+    return app.exec();
   }
-  return app.exec();
+  if (options.Screenshot)
+  {
+    ok = SaveScreenshots(window, options, opened) && ok;
+  }
+  // Saved last, so that the pictures do not show the status message of the save.
+  if (opened && options.SaveAtlas)
+  {
+    ok = window.SaveAtlas(options.AtlasPath) && ok;
+  }
+  return ok ? 0 : 1;
 }
