@@ -127,7 +127,7 @@ void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
     table->AddColumn(column);
   }
   output->SetBlock(0, table);
-  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Charts");
+  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), tc::kChartsBlock);
 
   // Block 1: one image per mip step.
   vtkNew<vtkMultiBlockDataSet> images;
@@ -149,10 +149,10 @@ void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
     image->GetPointData()->SetActiveScalars(tc::kAtlasNormal);
     images->SetBlock(static_cast<unsigned int>(k), image);
     images->GetMetaData(static_cast<unsigned int>(k))
-      ->Set(vtkCompositeDataSet::NAME(), ("Image " + std::to_string(k)).c_str());
+      ->Set(vtkCompositeDataSet::NAME(), (tc::kImageBlockPrefix + std::to_string(k)).c_str());
   }
   output->SetBlock(1, images);
-  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Images");
+  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), tc::kImagesBlock);
 
   // Field data: provenance.
   vtkNew<vtkStringArray> source;

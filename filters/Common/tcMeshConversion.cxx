@@ -378,7 +378,8 @@ bool readBaseComplexFields(
   }
   if (base.baseEdgeIsFeature.size() != base.baseTriangles.size())
   {
-    error = "BaseEdgeIsFeature and BaseTriangles do not have the same number of faces";
+    error = std::string(tc::kBaseEdgeIsFeature) + " and " + tc::kBaseTriangles +
+      " do not have the same number of faces";
     return false;
   }
   const int32_t nb = static_cast<int32_t>(base.baseVertices.size());
@@ -386,7 +387,7 @@ bool readBaseComplexFields(
   {
     if (v < 0 || v >= numPoints)
     {
-      error = "BaseVertexIds names a point the mesh does not have";
+      error = std::string(tc::kBaseVertexIds) + " names a point the mesh does not have";
       return false;
     }
   }
@@ -394,7 +395,7 @@ bool readBaseComplexFields(
   {
     if (v < 0 || v >= nb)
     {
-      error = "BaseTriangles names a base vertex that does not exist";
+      error = std::string(tc::kBaseTriangles) + " names a base vertex that does not exist";
       return false;
     }
   }
@@ -427,7 +428,7 @@ bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, st
   {
     if (f < 0 || f >= nf)
     {
-      error = "BaseFaceId names a base face that does not exist";
+      error = std::string(tc::kBaseFaceId) + " names a base face that does not exist";
       return false;
     }
   }

@@ -92,13 +92,13 @@ int tcSurfaceDistance::RequestData(
   output->GetPointData()->SetActiveScalars(tc::kDistance);
   vtkFieldData* fd = output->GetFieldData();
   const double diag = r.diagonal > 0 ? r.diagonal : 1.0;
-  addFigure(fd, "Hausdorff", r.hausdorff);
-  addFigure(fd, "MeanDistance", r.meanDistance);
-  addFigure(fd, "RmsDistance", r.rmsDistance);
-  addFigure(fd, "RelativeHausdorff", r.hausdorff / diag);
-  addFigure(fd, "RelativeMeanDistance", r.meanDistance / diag);
-  addFigure(fd, "RelativeRmsDistance", r.rmsDistance / diag);
-  addFigure(fd, "ReferenceDiagonal", r.diagonal);
+  addFigure(fd, tc::kHausdorff, r.hausdorff);
+  addFigure(fd, tc::kMeanDistance, r.meanDistance);
+  addFigure(fd, tc::kRmsDistance, r.rmsDistance);
+  addFigure(fd, tc::kRelativeHausdorff, r.hausdorff / diag);
+  addFigure(fd, tc::kRelativeMeanDistance, r.meanDistance / diag);
+  addFigure(fd, tc::kRelativeRmsDistance, r.rmsDistance / diag);
+  addFigure(fd, tc::kReferenceDiagonal, r.diagonal);
   std::ostringstream report;
   report << "samples per mesh: " << r.samples << "\n"
          << "Hausdorff: " << r.hausdorff << " (" << 100.0 * r.hausdorff / diag << "% of diagonal)\n"

@@ -3,10 +3,11 @@
 
 #include "tcAtlasConversion.h"
 
+#include "tc/common/array_names.h"
+#include "tc/common/parallel.h"
 #include "tc/gim/atlas.h"
 #include "tc/gim/geometry_image_mesh.h"
 #include "tc/gim/lod_selection.h"
-#include "tc/common/parallel.h"
 
 #include "tcGeometryImageBeginVS.h"
 #include "tcGeometryImageColorDecFS.h"
@@ -28,10 +29,11 @@
 #include <vtkOpenGLBufferObject.h>
 #include <vtkOpenGLHelper.h>
 #include <vtkOpenGLIndexBufferObject.h>
-#include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLPolyDataMapper.h>
+#include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLShaderProperty.h>
+#include <vtkOpenGLState.h>
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkOpenGLVertexBufferObject.h>
 #include <vtkPointData.h>
@@ -41,7 +43,6 @@
 #include <vtkRenderer.h>
 #include <vtkScalarsToColors.h>
 #include <vtkShaderProgram.h>
-#include <vtkOpenGLState.h>
 #include <vtkTextureUnitManager.h>
 #include <vtkTransformFeedback.h>
 #include <vtk_glew.h>
@@ -49,8 +50,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,8 @@ struct BufferTexture
     // An empty buffer texture is not allowed; one zero texel stands in. The values themselves
     // go up uncopied: the draw list is uploaded every frame.
     static const T zeros[4] = {};
-    this->buffer->Upload(values.empty() ? zeros : values.data(),
-      values.empty() ? 4 : values.size(), vtkOpenGLBufferObject::TextureBuffer);
+    this->buffer->Upload(values.empty() ? zeros : values.data(), values.empty() ? 4 : values.size(),
+      vtkOpenGLBufferObject::TextureBuffer);
     if (this->texture == 0)
     {
       glGenTextures(1, &this->texture);
@@ -234,8 +235,8 @@ struct tcLODMapper::Internals
 
   BufferTexture positions, normals, origins, chartTable, drawList, instanceRows, colors;
   vtkTimeStamp uploadTime;
-  std::string uploadedAttribute;        // the ColorAttribute asked for at the last upload
-  bool attributeFound = false;          // and whether it is in the positions' fourth component
+  std::string uploadedAttribute; // the ColorAttribute asked for at the last upload
+  bool attributeFound = false;   // and whether it is in the positions' fourth component
   std::array<double, 2> attributeRange{ 0.0, 1.0 };
   vtkOpenGLRenderWindow* uploadWindow = nullptr;
 
@@ -255,8 +256,7 @@ tcLODMapper::tcLODMapper()
   this->Internal->gridMapper->SetInputData(this->Internal->grid);
   this->Internal->captured->SetNumberOfComponents(8);
   this->Internal->capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "tcCaptureVSOutput");
-  this->Internal->capture->AddVarying(
-    vtkTransformFeedback::Color_RGBA_F, "tcCaptureGridVSOutput");
+  this->Internal->capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "tcCaptureGridVSOutput");
   this->Internal->capture->SetPrimitiveMode(GL_TRIANGLES);
 }
 
@@ -332,8 +332,8 @@ void tcLODMapper::SetInstanceMatrices(vtkDataArray* matrices)
     {
       vtkErrorMacro("SetInstanceMatrices needs 16 components per tuple (a row-major 4 x 4 "
                     "matrix) and at least one tuple; got "
-        << matrices->GetNumberOfComponents() << " components and "
-        << matrices->GetNumberOfTuples() << " tuples. The instances are unchanged.");
+        << matrices->GetNumberOfComponents() << " components and " << matrices->GetNumberOfTuples()
+        << " tuples. The instances are unchanged.");
       return;
     }
     values.resize(static_cast<size_t>(16 * matrices->GetNumberOfTuples()));
@@ -401,14 +401,14 @@ void tcLODMapper::GetLevels(vtkIntArray* levels) const
   const int instances = this->GetNumberOfInstances();
   const size_t nc = in.atlas.charts.size();
   levels->SetNumberOfComponents(instances);
-  levels->SetNumberOfTuples(in.levels.size() == nc * static_cast<size_t>(instances)
-      ? static_cast<vtkIdType>(nc)
-      : 0);
+  levels->SetNumberOfTuples(
+    in.levels.size() == nc * static_cast<size_t>(instances) ? static_cast<vtkIdType>(nc) : 0);
   for (vtkIdType c = 0; c < levels->GetNumberOfTuples(); ++c)
   {
     for (int i = 0; i < instances; ++i)
     {
-      levels->SetTypedComponent(c, i, in.levels[static_cast<size_t>(i) * nc + static_cast<size_t>(c)]);
+      levels->SetTypedComponent(
+        c, i, in.levels[static_cast<size_t>(i) * nc + static_cast<size_t>(c)]);
     }
   }
 }
@@ -484,7 +484,7 @@ bool tcLODMapper::UpdateAtlas()
   }
   // Normals only so that VTK declares and lights them; the shader reads the normal image.
   vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
+  normals->SetName(tc::kVertexNormal);
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(points->GetNumberOfPoints());
   normals->FillValue(0.0f);
@@ -523,7 +523,8 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
       names += (names.empty() ? "" : ", ") + atlas.attributes[a].name;
     }
     vtkErrorMacro("ColorAttribute '" << attributeName << "' is not an attribute of the atlas ("
-                                     << (names.empty() ? "it has none besides Position and Normal"
+                                     << (names.empty() ? std::string("it has none besides ") +
+                                              tc::kAtlasPosition + " and " + tc::kAtlasNormal
                                                        : "it has " + names)
                                      << "); the actor's colour is used.");
   }
@@ -573,15 +574,14 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   std::vector<int32_t> charts;
   for (const tc::AtlasChart& chart : atlas.charts)
   {
-    charts.insert(
-      charts.end(), { static_cast<int32_t>(origins.size() / 4), chart.maxLevel, 0, 0 });
+    charts.insert(charts.end(), { static_cast<int32_t>(origins.size() / 4), chart.maxLevel, 0, 0 });
     for (int32_t k = 0; k <= chart.maxLevel; ++k)
     {
       const auto& o = chart.origin[static_cast<size_t>(k)];
       const int32_t width = atlas.images[static_cast<size_t>(k)].width;
       const int64_t linear = imageBase[static_cast<size_t>(k)] + int64_t(o[1]) * width + o[0];
-      origins.insert(origins.end(),
-        { static_cast<int32_t>(linear), chart.rotated ? -width : width, 0, 0 });
+      origins.insert(
+        origins.end(), { static_cast<int32_t>(linear), chart.rotated ? -width : width, 0, 0 });
     }
   }
   std::vector<float> rows;
@@ -609,8 +609,8 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
         {
           // A chart's finest level lies in image 0.
           const auto xy = tc::atlasTexel(atlas.charts[c], n, i, j);
-          const float value = position[static_cast<size_t>(
-            4 * (int64_t(xy[1]) * atlas.images[0].width + xy[0]) + 3)];
+          const float value =
+            position[static_cast<size_t>(4 * (int64_t(xy[1]) * atlas.images[0].width + xy[0]) + 3)];
           in.attributeRange[0] = std::min(in.attributeRange[0], double(value));
           in.attributeRange[1] = std::max(in.attributeRange[1], double(value));
         }
@@ -677,8 +677,7 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
         view.height = std::max(1, height);
         vtkMatrix4x4::Multiply4x4(
           toClip, in.instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
-        tc::selectLevels(
-          in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
+        tc::selectLevels(in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
       },
       tc::Progress(), 1);
   }
@@ -753,8 +752,8 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
                                                             << " indices); nothing drawn.");
     return;
   }
-  const GLenum mode =
-    static_cast<GLenum>(this->GetOpenGLMode(act->GetProperty()->GetRepresentation(), PrimitiveTris));
+  const GLenum mode = static_cast<GLenum>(
+    this->GetOpenGLMode(act->GetProperty()->GetRepresentation(), PrimitiveTris));
   this->UpdateShaders(tris, ren, act);
   vtkShaderProgram* program = tris.Program;
   if (!program)
@@ -890,7 +889,8 @@ double* tcLODMapper::GetBounds()
           }
           for (int r = 0; r < 3; ++r)
           {
-            const double v = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
+            const double v =
+              t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
             b[2 * r] = std::min(b[2 * r], v);
             b[2 * r + 1] = std::max(b[2 * r + 1], v);
           }

@@ -67,7 +67,9 @@ def cmd_info(_args):
 
 def _finest_level(atlas):
     """The largest d_max over the charts of an atlas multiblock."""
-    levels = atlas.GetBlock(0).GetColumnByName("MaxLevel")
+    from .TriChartIO import tcArrayNames
+
+    levels = atlas.GetBlock(0).GetColumnByName(tcArrayNames.MaxLevel())
     return max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
 
 
@@ -112,7 +114,10 @@ def cmd_build(args):
     if result["retried"]:
         print(f"  note: {result['retried']}")
     # What a scene file held beyond its surfaces (bones, animations), from the reader's report.
-    field = result["mesh"].GetFieldData().GetAbstractArray("ReaderReport")  # a line per value
+    from .TriChartIO import tcArrayNames
+
+    # A line per value.
+    field = result["mesh"].GetFieldData().GetAbstractArray(tcArrayNames.ReaderReport())
     for line in [field.GetValue(i) for i in range(field.GetNumberOfValues())][2:] if field else []:
         if not line.startswith(("point array", "cell array")):
             print(f"  read: {line}")
