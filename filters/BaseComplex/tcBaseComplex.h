@@ -7,10 +7,10 @@
  * Quadric-error half-edge collapses, each keeping one endpoint, simplify the mesh until it has
  * TargetFaces triangles or the next collapse would exceed MaxError, a fraction of the squared
  * bounding-box diagonal (default 1e-4: base triangles within about 1% of the diagonal, RMS, of
- * their surface; 0 lets the count alone decide). Feature curves simplify only along themselves and become base edges;
- * corners are never removed; no collapse changes the topology or flips a triangle. As vertices
- * are removed, MAPS keeps each one's position on the coarser mesh, so that every input vertex
- * ends with a base face and barycentric coordinates.
+ * their surface; 0 lets the count alone decide). Feature curves simplify only along themselves and
+ * become base edges; corners are never removed; no collapse changes the topology or flips a
+ * triangle. As vertices are removed, MAPS keeps each one's position on the coarser mesh, so that
+ * every input vertex ends with a base face and barycentric coordinates.
  *
  * Input: a closed manifold triangle mesh, normally tcFeatureRefinement's output (point arrays
  * FeatureVertex and CornerVertex and field array FeatureEdges are used when present).
@@ -22,6 +22,8 @@
 #define tcBaseComplex_h
 
 #include "TriChartBaseComplexModule.h"
+
+#include "tc/gim/base_complex.h" // for the defaults of the properties
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -55,8 +57,8 @@ private:
   tcBaseComplex(const tcBaseComplex&) = delete;
   void operator=(const tcBaseComplex&) = delete;
 
-  vtkIdType TargetFaces = 100;
-  double MaxError = 1e-4;
+  vtkIdType TargetFaces = tc::BaseComplexOptions{}.targetFaces;
+  double MaxError = tc::BaseComplexOptions{}.maxError;
 };
 
 #endif

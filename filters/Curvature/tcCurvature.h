@@ -24,6 +24,8 @@
 
 #include "TriChartCurvatureModule.h"
 
+#include "tc/features/crest_lines.h" // for the defaults of the properties
+
 #include <vtkPolyDataAlgorithm.h>
 
 class TRICHARTCURVATURE_EXPORT tcCurvature : public vtkPolyDataAlgorithm
@@ -87,13 +89,13 @@ private:
   tcCurvature(const tcCurvature&) = delete;
   void operator=(const tcCurvature&) = delete;
 
-  int MinNeighbors = 20;
-  int MaxRings = 6;
-  int Degree = 3;
-  bool Robust = true;
-  int RobustIterations = 2;
+  int MinNeighbors = tc::CurvatureOptions{}.minNeighbors;
+  int MaxRings = tc::CurvatureOptions{}.maxRings;
+  int Degree = tc::CurvatureOptions{}.degree;
+  bool Robust = tc::CurvatureOptions{}.robust;
+  int RobustIterations = tc::CurvatureOptions{}.robustIterations;
   bool ComputeCrestLines = true;
-  double CrestStrengthThreshold = 1.0;
+  double CrestStrengthThreshold = tc::CrestLineOptions{}.minStrength;
 };
 
 #endif

@@ -20,19 +20,6 @@ vtkStandardNewMacro(tcFeatureRefinement);
 
 tcFeatureRefinement::tcFeatureRefinement()
 {
-  const tc::FeatureRefinementOptions defaults;
-  this->BandFraction = defaults.bandFraction;
-  this->CrestBeta = defaults.crestBeta;
-  this->CurvatureTopFraction = defaults.curvatureTopFraction;
-  this->CurvatureThresholdScale = defaults.curvatureThresholdScale;
-  this->BandRings = defaults.bandRings;
-  this->CutPasses = defaults.cutPasses;
-  this->DihedralWeight = defaults.dihedralWeight;
-  this->JunctionCorners = defaults.junctionCorners;
-  this->StraightenLines = defaults.straightenLines;
-  this->CreaseAngle = defaults.creaseAngle;
-  this->CornerRings = defaults.cornerRings;
-  this->CornerFraction = defaults.cornerFraction;
   this->SetNumberOfOutputPorts(3);
 }
 

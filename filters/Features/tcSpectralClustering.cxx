@@ -23,16 +23,6 @@ vtkStandardNewMacro(tcSpectralClustering);
 
 tcSpectralClustering::tcSpectralClustering()
 {
-  const tc::SpectralClusteringOptions defaults;
-  this->NumberOfClusters = defaults.numClusters;
-  this->NumberOfEigenvectors = defaults.numEigenvectors;
-  this->CrestBeta = defaults.crestBeta;
-  this->ExtraEdgeFactor = defaults.extraEdgeFactor;
-  this->NormalSigma = defaults.exactNormalSigma;
-  this->NystromThreshold = defaults.nystromThreshold;
-  this->NystromSamples = defaults.nystromSamples;
-  this->KMeansRestarts = defaults.kmeansRestarts;
-  this->Seed = static_cast<int>(defaults.seed);
   this->SetNumberOfOutputPorts(2);
 }
 

@@ -19,6 +19,8 @@
 
 #include "TriChartFeaturesModule.h"
 
+#include "tc/features/spectral_clustering.h" // for the defaults of the properties
+
 #include <vtkPolyDataAlgorithm.h>
 
 class TRICHARTFEATURES_EXPORT tcSpectralClustering : public vtkPolyDataAlgorithm
@@ -94,16 +96,16 @@ private:
   tcSpectralClustering(const tcSpectralClustering&) = delete;
   void operator=(const tcSpectralClustering&) = delete;
 
-  // Defaults are the core's (tc::SpectralClusteringOptions), set in the constructor.
-  int NumberOfClusters;
-  int NumberOfEigenvectors;
-  double CrestBeta;
-  double ExtraEdgeFactor;
-  double NormalSigma;
-  vtkIdType NystromThreshold;
-  int NystromSamples;
-  int KMeansRestarts;
-  int Seed;
+  int NumberOfClusters = tc::SpectralClusteringOptions{}.numClusters;
+  int NumberOfEigenvectors = tc::SpectralClusteringOptions{}.numEigenvectors;
+  double CrestBeta = tc::SpectralClusteringOptions{}.crestBeta;
+  double ExtraEdgeFactor = tc::SpectralClusteringOptions{}.extraEdgeFactor;
+  double NormalSigma = tc::SpectralClusteringOptions{}.exactNormalSigma;
+  vtkIdType NystromThreshold = tc::SpectralClusteringOptions{}.nystromThreshold;
+  int NystromSamples = tc::SpectralClusteringOptions{}.nystromSamples;
+  int KMeansRestarts = tc::SpectralClusteringOptions{}.kmeansRestarts;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int Seed = int(tc::SpectralClusteringOptions{}.seed);
 };
 
 #endif

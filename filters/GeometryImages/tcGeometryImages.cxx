@@ -19,17 +19,12 @@
 
 vtkStandardNewMacro(tcGeometryImages);
 
-tcGeometryImages::tcGeometryImages()
-{
-  const tc::GeometryImageOptions defaults;
-  this->SampleBudget = defaults.sampleBudget;
-  this->MinLevel = defaults.minLevel;
-  this->MaxLevel = defaults.maxLevel;
-  this->CurvatureWeight = defaults.curvatureWeight;
-  this->LevelRule = static_cast<int>(defaults.levelRule);
-  this->StretchIterations = defaults.stretchIterations;
-  this->FitSamples = defaults.fitSamples;
-}
+// The property's values are the core's (the default member initializer casts one to the other).
+static_assert(tcGeometryImages::LEVEL_RULE_AREA == static_cast<int>(tc::LevelRule::Area) &&
+    tcGeometryImages::LEVEL_RULE_ERROR == static_cast<int>(tc::LevelRule::Error),
+  "LevelRules and tc::LevelRule must agree");
+
+tcGeometryImages::tcGeometryImages() = default;
 
 tcGeometryImages::~tcGeometryImages() = default;
 

@@ -22,6 +22,8 @@
 
 #include "TriChartGeometryImagesModule.h"
 
+#include "tc/gim/geometry_images.h" // for the defaults of the properties
+
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
 #include <string>
@@ -106,13 +108,14 @@ private:
   tcGeometryImages(const tcGeometryImages&) = delete;
   void operator=(const tcGeometryImages&) = delete;
 
-  vtkIdType SampleBudget = 0;
-  int MinLevel = 2;
-  int MaxLevel = 8;
-  double CurvatureWeight = 1.0;
-  int LevelRule = LEVEL_RULE_ERROR;
-  int StretchIterations = 10;
-  bool FitSamples = true;
+  vtkIdType SampleBudget = tc::GeometryImageOptions{}.sampleBudget;
+  int MinLevel = tc::GeometryImageOptions{}.minLevel;
+  int MaxLevel = tc::GeometryImageOptions{}.maxLevel;
+  double CurvatureWeight = tc::GeometryImageOptions{}.curvatureWeight;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int LevelRule = int(tc::GeometryImageOptions{}.levelRule);
+  int StretchIterations = tc::GeometryImageOptions{}.stretchIterations;
+  bool FitSamples = tc::GeometryImageOptions{}.fitSamples;
   std::vector<std::string> ResampledArrays;
 };
 

@@ -17,6 +17,8 @@
 
 #include "TriChartGeometryImagesModule.h"
 
+#include "tc/metrics/surface_distance.h" // for the defaults of the properties
+
 #include <vtkPolyDataAlgorithm.h>
 
 class TRICHARTGEOMETRYIMAGES_EXPORT tcSurfaceDistance : public vtkPolyDataAlgorithm
@@ -61,8 +63,9 @@ private:
   tcSurfaceDistance(const tcSurfaceDistance&) = delete;
   void operator=(const tcSurfaceDistance&) = delete;
 
-  vtkIdType SamplesPerMesh = 0;
-  int Seed = 1;
+  vtkIdType SamplesPerMesh = tc::SurfaceDistanceOptions{}.samplesPerMesh;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int Seed = int(tc::SurfaceDistanceOptions{}.seed);
   double Hausdorff = 0.0;
   double MeanDistance = 0.0;
   double RmsDistance = 0.0;
