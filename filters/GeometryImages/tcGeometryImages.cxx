@@ -48,6 +48,34 @@ void tcGeometryImages::ClearResampledArrays()
   }
 }
 
+namespace
+{
+/// The point arrays to resample, each with its components; false, saying which is missing or
+/// of the wrong size in `error`.
+bool ReadResampledArrays(vtkPointData* pd, vtkIdType np, const std::vector<std::string>& names,
+  std::vector<tc::GeometryImageAttribute>& extra, std::string& error)
+{
+  for (const std::string& name : names)
+  {
+    vtkDataArray* array = pd->GetArray(name.c_str());
+    if (!array)
+    {
+      error = "the input has no numeric point array '" + name + "' to resample";
+      return false;
+    }
+    tc::GeometryImageAttribute attribute;
+    attribute.name = name;
+    attribute.components = array->GetNumberOfComponents();
+    if (!tcvtk::ReadArray(pd, name.c_str(), np, attribute.components, attribute.values, error))
+    {
+      return false;
+    }
+    extra.push_back(std::move(attribute));
+  }
+  return true;
+}
+} // namespace
+
 int tcGeometryImages::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
@@ -85,25 +113,10 @@ int tcGeometryImages::RequestData(
     return 0;
   }
   std::vector<tc::GeometryImageAttribute> extra;
-  for (const std::string& name : this->ResampledArrays)
+  if (!ReadResampledArrays(input->GetPointData(), np, this->ResampledArrays, extra, error))
   {
-    vtkDataArray* array = input->GetPointData()->GetArray(name.c_str());
-    if (!array)
-    {
-      vtkErrorMacro("Cannot build geometry images: the input has no numeric point array '"
-        << name << "' to resample.");
-      return 0;
-    }
-    tc::GeometryImageAttribute attribute;
-    attribute.name = name;
-    attribute.components = array->GetNumberOfComponents();
-    if (!tcvtk::ReadArray(
-          input->GetPointData(), name.c_str(), np, attribute.components, attribute.values, error))
-    {
-      vtkErrorMacro("Cannot build geometry images: " << error << ".");
-      return 0;
-    }
-    extra.push_back(std::move(attribute));
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
+    return 0;
   }
 
   // 4. Parameterize, resample, pack.

@@ -121,6 +121,11 @@ private:
   tcMeshPreparation(const tcMeshPreparation&) = delete;
   void operator=(const tcMeshPreparation&) = delete;
 
+  /// The counts, flags and report of the last run: cleared, then set from the core's report.
+  void ClearReport();
+  void RecordReport(
+    const tc::PreparationReport& counts, const tc::PreparationOptions& options, int64_t ignored);
+
   double MergeTolerance = tc::PreparationOptions{}.mergeTolerance;
   bool SplitNonManifold = tc::PreparationOptions{}.splitNonManifold;
   bool Orient = tc::PreparationOptions{}.orient;
