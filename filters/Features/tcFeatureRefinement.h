@@ -55,8 +55,8 @@ public:
   ///@}
 
   ///@{
-  /// Multiplies that curvature threshold (1 is the paper's rule; the default 0.7 keeps creases
-  /// whose curvature varies along them).
+  /// Multiplies that curvature threshold (1 is the paper's rule; the default, below 1, keeps
+  /// creases whose curvature varies along them).
   vtkSetClampMacro(CurvatureThresholdScale, double, 0.0, 100.0);
   vtkGetMacro(CurvatureThresholdScale, double);
   ///@}

@@ -11,8 +11,10 @@
  * use the Nystrom approximation. Every connected component is clustered on its own.
  *
  * Input: tcCurvature's output (cell array FaceMeanCurvature; point array CrestVertex is used
- * when present). Output port 0: the mesh with cell array ClusterId and field array Eigenvalues.
- * Output port 1: the cluster boundaries as polylines over mesh edges.
+ * when present). Output port 0: the mesh with cell array ClusterId (0 .. k - 1, every face in
+ * one cluster) and field array Eigenvalues (the largest eigenvalues, descending). Output port 1:
+ * the cluster boundaries as polylines over mesh edges (point array InputPointId). Input that is
+ * not triangles or lacks FaceMeanCurvature is an error that names the stage to apply first.
  */
 #ifndef tcSpectralClustering_h
 #define tcSpectralClustering_h
@@ -57,7 +59,7 @@ public:
   ///@{
   /// When above 0, similarities also fall with the angle between face normals,
   /// exp(-(1 - n_i . n_j) / NormalSigma), which puts boundaries on sharp creases of CAD parts
-  /// (0.05 works on fandisk); 0 (default) is the paper's eq. 3.
+  /// (small values, a few hundredths, follow the creases); 0 (default) is the paper's eq. 3.
   vtkSetClampMacro(NormalSigma, double, 0.0, 100.0);
   vtkGetMacro(NormalSigma, double);
   ///@}

@@ -13,9 +13,11 @@
  * cracks. Two charts of close resolution share each (2^dh + 2) x (2^dh + 1) rectangle. Every chart
  * also gets an oriented bounding box and an error estimate per level.
  *
- * Input: tcPathTracing's first output. Output: the atlas as a multiblock (block 0 the chart
- * table, block 1 one vtkImageData per mip step with float arrays Position, Normal and the
- * point arrays chosen with AddResampledArray); tcAtlasWriter saves it.
+ * Input: tcPathTracing's first output (point array MeanCurvature is used when present).
+ * Output: the atlas as a multiblock (tcAtlasConversion.h): block 0 the chart table, block 1
+ * one vtkImageData per mip step with float arrays Position, Normal (3 components, input units)
+ * and the point arrays chosen with AddResampledArray; tcAtlasWriter saves it. Input without
+ * the patch arrays, a missing resampled array, or MinLevel above MaxLevel is an error.
  */
 #ifndef tcGeometryImages_h
 #define tcGeometryImages_h
@@ -84,8 +86,8 @@ public:
   /// Fit the samples of every chart's finest level to the surface by least squares (sides to
   /// their paths, interiors to their patches) instead of interpolating the surface at them
   /// (default on): a grid triangle is a chord that lies to one side of a curved surface, and
-  /// fitted samples put it on both sides, lowering the RMS error of the finest level by 13-27%
-  /// on the bench meshes. Feature curves stay sampled on the curve.
+  /// fitted samples put it on both sides, which lowers the RMS error of the finest level.
+  /// Feature curves stay sampled on the curve.
   vtkSetMacro(FitSamples, bool);
   vtkGetMacro(FitSamples, bool);
   vtkBooleanMacro(FitSamples, bool);
