@@ -104,9 +104,9 @@ int tcBaseComplex::RequestData(
   // 2 and 3. Validate while converting; the feature arrays are optional.
   tc::TriMesh mesh;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error))
   {
-    vtkErrorMacro("Cannot build the base complex: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot build the base complex: " << error << ".");
     return 0;
   }
   std::vector<uint8_t> feature;

@@ -76,6 +76,11 @@ tc::PolygonSoup ToPolygonSoup(
 
 bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error)
 {
+  if (!input)
+  {
+    error = "no input";
+    return false;
+  }
   const vtkIdType nonSurface =
     input->GetNumberOfVerts() + input->GetNumberOfLines() + input->GetNumberOfStrips();
   vtkCellArray* polys = input->GetPolys();

@@ -37,8 +37,9 @@ namespace tcvtk
 TRICHARTCOMMON_EXPORT tc::PolygonSoup ToPolygonSoup(
   vtkPolyData* input, std::vector<int64_t>& polygonCell, int64_t& ignoredCells);
 
-/// The triangles of `input`; returns false and says why in `error` when `input` has cells
-/// that are not triangles (the message tells the user to run tcMeshPreparation first).
+/// The triangles of `input`; returns false and says why in `error` when there is no input
+/// ("no input") or it has cells that are not triangles (the message tells the user to run
+/// tcMeshPreparation first).
 TRICHARTCOMMON_EXPORT bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error);
 
 /// Sets points (double precision) and triangles of `output` from a core mesh.

@@ -84,9 +84,9 @@ int tcCurvature::RequestData(
   // 2 and 3. Validate while converting: triangles only.
   tc::TriMesh mesh;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error))
   {
-    vtkErrorMacro("Cannot compute curvature: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot compute curvature: " << error << ".");
     return 0;
   }
 

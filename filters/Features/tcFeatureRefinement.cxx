@@ -59,7 +59,7 @@ int tcFeatureRefinement::RequestData(
   std::vector<double> vertexCurvature;
   std::vector<double> faceCurvature;
   std::vector<uint8_t> crest;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
+  if (!tcvtk::ToTriMesh(input, mesh, error) ||
     !tcvtk::ReadIntArray(
       input->GetCellData(), tc::kClusterId, mesh.numTriangles(), clusters, error) ||
     !tcvtk::ReadArray(
@@ -68,8 +68,7 @@ int tcFeatureRefinement::RequestData(
       input->GetCellData(), tc::kFaceMeanCurvature, mesh.numTriangles(), 1, faceCurvature, error))
   {
     vtkErrorMacro("Cannot refine features: "
-      << (input ? error : "no input")
-      << "; apply tcCurvature and tcSpectralClustering before tcFeatureRefinement.");
+      << error << "; apply tcCurvature and tcSpectralClustering before tcFeatureRefinement.");
     return 0;
   }
   std::string ignored; // a crest array of the wrong size is not used

@@ -64,12 +64,12 @@ int tcSpectralClustering::RequestData(
   std::string error;
   std::vector<double> faceCurvature;
   std::vector<uint8_t> crest;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
+  if (!tcvtk::ToTriMesh(input, mesh, error) ||
     !tcvtk::ReadArray(
       input->GetCellData(), tc::kFaceMeanCurvature, mesh.numTriangles(), 1, faceCurvature, error))
   {
-    vtkErrorMacro("Cannot cluster: " << (input ? error : "no input")
-                                     << "; apply tcCurvature before tcSpectralClustering.");
+    vtkErrorMacro(
+      "Cannot cluster: " << error << "; apply tcCurvature before tcSpectralClustering.");
     return 0;
   }
   std::string ignored; // a crest array of the wrong size is not used

@@ -93,9 +93,9 @@ int tcGeometryImages::RequestData(
   tc::PatchMesh patches;
   tc::BaseComplexResult base;
   std::string error;
-  if (!input || !tcvtk::ReadPatchMesh(input, patches, base, error))
+  if (!tcvtk::ReadPatchMesh(input, patches, base, error))
   {
-    vtkErrorMacro("Cannot build geometry images: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;
   }
   if (this->MinLevel > this->MaxLevel)

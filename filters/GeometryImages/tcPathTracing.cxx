@@ -132,10 +132,9 @@ int tcPathTracing::RequestData(
   tc::TriMesh mesh;
   tc::BaseComplexResult base;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
-    !tcvtk::ReadBaseComplex(input, base, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error) || !tcvtk::ReadBaseComplex(input, base, error))
   {
-    vtkErrorMacro("Cannot trace paths: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot trace paths: " << error << ".");
     return 0;
   }
 
