@@ -29,6 +29,70 @@ tcBaseComplex::tcBaseComplex()
 
 tcBaseComplex::~tcBaseComplex() = default;
 
+namespace
+{
+/// The optional field array FeatureEdges (point-id pairs) into `edges`; false, saying why in
+/// `error`, when it is not made of pairs.
+bool ReadFeatureEdges(vtkFieldData* fd, std::vector<int32_t>& edges, std::string& error)
+{
+  vtkDataArray* array = fd->GetArray(tc::kFeatureEdges);
+  if (!array)
+  {
+    return true;
+  }
+  if (array->GetNumberOfComponents() != 2)
+  {
+    error = std::string("field array ") + tc::kFeatureEdges + " must have 2 components";
+    return false;
+  }
+  edges.resize(2 * static_cast<size_t>(array->GetNumberOfTuples()));
+  for (vtkIdType e = 0; e < array->GetNumberOfTuples(); ++e)
+  {
+    edges[2 * e] = static_cast<int32_t>(array->GetComponent(e, 0));
+    edges[2 * e + 1] = static_cast<int32_t>(array->GetComponent(e, 1));
+  }
+  return true;
+}
+
+/// Output port 0: the base triangles over the input points they keep, with InputPointId,
+/// BaseFaceId and BaseEdgeIsFeature.
+void BaseComplexMesh(
+  const tc::TriMesh& mesh, const tc::BaseComplexResult& result, vtkPolyData* base)
+{
+  tc::TriMesh complex;
+  complex.points.resize(3 * result.baseVertices.size());
+  for (size_t b = 0; b < result.baseVertices.size(); ++b)
+  {
+    std::copy_n(
+      &mesh.points[3 * static_cast<size_t>(result.baseVertices[b])], 3, &complex.points[3 * b]);
+  }
+  complex.triangles = result.baseTriangles;
+  tcvtk::FromTriMesh(complex, base);
+  std::vector<int32_t> faceIds(complex.numTriangles());
+  std::iota(faceIds.begin(), faceIds.end(), 0);
+  base->GetPointData()->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.baseVertices));
+  base->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseFaceId, faceIds));
+  vtkSmartPointer<vtkDataArray> sides = tcvtk::MakeArray(tc::kBaseEdgeIsFeature, 3,
+    std::vector<double>(result.baseEdgeIsFeature.begin(), result.baseEdgeIsFeature.end()));
+  base->GetCellData()->AddArray(sides);
+}
+
+/// Output port 1: the input with each vertex's base face and barycentric coordinates (MAPS);
+/// the base complex itself travels in its field data, so that tcPathTracing needs this output
+/// only.
+void ParameterizedMesh(
+  vtkPolyData* input, const tc::BaseComplexResult& result, vtkPolyData* parameterized)
+{
+  parameterized->ShallowCopy(input);
+  parameterized->GetPointData()->AddArray(
+    tcvtk::MakeIntArray(tc::kBaseFaceId, result.vertexBaseFace));
+  parameterized->GetPointData()->AddArray(
+    tcvtk::MakeArray(tc::kBaseBarycentric, 3, result.vertexBarycentric));
+  parameterized->GetPointData()->SetActiveScalars(tc::kBaseFaceId);
+  tcvtk::AddBaseComplexFields(result, parameterized->GetFieldData());
+}
+} // namespace
+
 int tcBaseComplex::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -40,41 +104,21 @@ int tcBaseComplex::RequestData(
   // 2 and 3. Validate while converting; the feature arrays are optional.
   tc::TriMesh mesh;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error))
   {
-    vtkErrorMacro("Cannot build the base complex: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot build the base complex: " << error << ".");
     return 0;
   }
   std::vector<uint8_t> feature;
   std::vector<uint8_t> corner;
   std::vector<int32_t> featureEdges;
-  if (input->GetPointData()->GetArray(tc::kFeatureVertex) &&
-    !tcvtk::ReadIntArray(
-      input->GetPointData(), tc::kFeatureVertex, mesh.numPoints(), feature, error))
+  vtkPointData* pd = input->GetPointData();
+  if (!tcvtk::ReadOptionalIntArray(pd, tc::kFeatureVertex, mesh.numPoints(), feature, error) ||
+    !tcvtk::ReadOptionalIntArray(pd, tc::kCornerVertex, mesh.numPoints(), corner, error) ||
+    !ReadFeatureEdges(input->GetFieldData(), featureEdges, error))
   {
     vtkErrorMacro("Cannot build the base complex: " << error << ".");
     return 0;
-  }
-  if (input->GetPointData()->GetArray(tc::kCornerVertex) &&
-    !tcvtk::ReadIntArray(input->GetPointData(), tc::kCornerVertex, mesh.numPoints(), corner, error))
-  {
-    vtkErrorMacro("Cannot build the base complex: " << error << ".");
-    return 0;
-  }
-  if (vtkDataArray* edges = input->GetFieldData()->GetArray(tc::kFeatureEdges))
-  {
-    if (edges->GetNumberOfComponents() != 2)
-    {
-      vtkErrorMacro("Cannot build the base complex: field array " << tc::kFeatureEdges
-                                                                  << " must have 2 components.");
-      return 0;
-    }
-    featureEdges.resize(2 * static_cast<size_t>(edges->GetNumberOfTuples()));
-    for (vtkIdType e = 0; e < edges->GetNumberOfTuples(); ++e)
-    {
-      featureEdges[2 * e] = static_cast<int32_t>(edges->GetComponent(e, 0));
-      featureEdges[2 * e + 1] = static_cast<int32_t>(edges->GetComponent(e, 1));
-    }
   }
 
   // 4. Simplify with MAPS.
@@ -94,32 +138,8 @@ int tcBaseComplex::RequestData(
   }
 
   // 5. The base complex over the input's points, and the parameterized input mesh.
-  tc::TriMesh complex;
-  complex.points.resize(3 * result.baseVertices.size());
-  for (size_t b = 0; b < result.baseVertices.size(); ++b)
-  {
-    std::copy_n(
-      &mesh.points[3 * static_cast<size_t>(result.baseVertices[b])], 3, &complex.points[3 * b]);
-  }
-  complex.triangles = result.baseTriangles;
-  tcvtk::FromTriMesh(complex, base);
-  std::vector<int32_t> faceIds(complex.numTriangles());
-  std::iota(faceIds.begin(), faceIds.end(), 0);
-  base->GetPointData()->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.baseVertices));
-  base->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseFaceId, faceIds));
-  vtkSmartPointer<vtkDataArray> sides = tcvtk::MakeArray(tc::kBaseEdgeIsFeature, 3,
-    std::vector<double>(result.baseEdgeIsFeature.begin(), result.baseEdgeIsFeature.end()));
-  base->GetCellData()->AddArray(sides);
-
-  parameterized->ShallowCopy(input);
-  parameterized->GetPointData()->AddArray(
-    tcvtk::MakeIntArray(tc::kBaseFaceId, result.vertexBaseFace));
-  parameterized->GetPointData()->AddArray(
-    tcvtk::MakeArray(tc::kBaseBarycentric, 3, result.vertexBarycentric));
-  parameterized->GetPointData()->SetActiveScalars(tc::kBaseFaceId);
-  // The base complex itself travels with the parameterized mesh, so that tcPathTracing needs
-  // this one output only.
-  tcvtk::AddBaseComplexFields(result, parameterized->GetFieldData());
+  BaseComplexMesh(mesh, result, base);
+  ParameterizedMesh(input, result, parameterized);
   return 1;
 }
 

@@ -6,22 +6,28 @@
  *
  * Quadric-error half-edge collapses, each keeping one endpoint, simplify the mesh until it has
  * TargetFaces triangles or the next collapse would exceed MaxError, a fraction of the squared
- * bounding-box diagonal (default 1e-4: base triangles within about 1% of the diagonal, RMS, of
- * their surface; 0 lets the count alone decide). Feature curves simplify only along themselves and become base edges;
- * corners are never removed; no collapse changes the topology or flips a triangle. As vertices
- * are removed, MAPS keeps each one's position on the coarser mesh, so that every input vertex
- * ends with a base face and barycentric coordinates.
+ * bounding-box diagonal (a quadric error is a squared distance: 1e-4 is an RMS distance of 1% of
+ * the diagonal; 0 lets the count alone decide). Feature curves simplify only along themselves
+ * and become base edges; corners are never removed; no collapse changes the topology or flips a
+ * triangle. As vertices are removed, MAPS keeps each one's position on the coarser mesh, so that
+ * every input vertex ends with a base face and barycentric coordinates.
  *
  * Input: a closed manifold triangle mesh, normally tcFeatureRefinement's output (point arrays
- * FeatureVertex and CornerVertex and field array FeatureEdges are used when present).
- * Output port 0: the base complex; its points are input vertices (point array InputPointId),
- * cell arrays BaseFaceId and BaseEdgeIsFeature. Output port 1: the input mesh with point arrays
- * BaseFaceId and BaseBarycentric.
+ * FeatureVertex and CornerVertex, 0/1 per vertex, and field array FeatureEdges, #E x 2 point
+ * ids, are used when present).
+ * Output port 0: the base complex, #Fb triangles over #Vb input vertices (point array
+ * InputPointId), cell arrays BaseFaceId (0 .. #Fb - 1) and BaseEdgeIsFeature (3 flags, side i
+ * from corner i to i + 1). Output port 1: the input mesh with point arrays BaseFaceId and
+ * BaseBarycentric (3 barycentric coordinates in that base face), and the base complex as field
+ * arrays (BaseVertexIds, BaseTriangles, BaseEdgeIsFeature) for tcPathTracing.
+ * A mesh that is not a closed manifold, or feature arrays of the wrong size, is an error.
  */
 #ifndef tcBaseComplex_h
 #define tcBaseComplex_h
 
 #include "TriChartBaseComplexModule.h"
+
+#include "tc/gim/base_complex.h" // for the defaults of the properties
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -55,8 +61,8 @@ private:
   tcBaseComplex(const tcBaseComplex&) = delete;
   void operator=(const tcBaseComplex&) = delete;
 
-  vtkIdType TargetFaces = 100;
-  double MaxError = 1e-4;
+  vtkIdType TargetFaces = tc::BaseComplexOptions{}.targetFaces;
+  double MaxError = tc::BaseComplexOptions{}.maxError;
 };
 
 #endif

@@ -74,14 +74,12 @@ vtkDoubleArray* doubleColumnOf(
 }
 } // namespace
 
-void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
+namespace
 {
-  output->Initialize();
+/// Block 0 of the atlas: one row per chart (tcAtlasConversion.h lists the columns).
+vtkSmartPointer<vtkTable> ChartTable(const tc::Atlas& atlas, int levels)
+{
   const vtkIdType nc = static_cast<vtkIdType>(atlas.charts.size());
-  const int levels = std::max(atlas.maxLevel() + 1, 1);
-
-  // Block 0: the chart table.
-  vtkNew<vtkTable> table;
   auto id = intColumn(tc::kChartId, 1, nc);
   auto maxLevel = intColumn(tc::kMaxLevel, 1, nc);
   auto corners = intColumn(tc::kChartCorners, 3, nc);
@@ -121,16 +119,19 @@ void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
       levelError->SetTypedComponent(c, static_cast<int>(d), chart.levelError[d]);
     }
   }
+  auto table = vtkSmartPointer<vtkTable>::New();
   for (vtkAbstractArray* column : std::vector<vtkAbstractArray*>{ id, maxLevel, corners,
          neighborChart, neighborSide, featureSide, partner, rotated, origin, box, levelError })
   {
     table->AddColumn(column);
   }
-  output->SetBlock(0, table);
-  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Charts");
+  return table;
+}
 
-  // Block 1: one image per mip step.
-  vtkNew<vtkMultiBlockDataSet> images;
+/// Block 1 of the atlas: one image per mip step, a float point array per attribute.
+vtkSmartPointer<vtkMultiBlockDataSet> ImageBlocks(const tc::Atlas& atlas)
+{
+  auto images = vtkSmartPointer<vtkMultiBlockDataSet>::New();
   images->SetNumberOfBlocks(static_cast<unsigned int>(atlas.images.size()));
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
@@ -149,104 +150,107 @@ void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
     image->GetPointData()->SetActiveScalars(tc::kAtlasNormal);
     images->SetBlock(static_cast<unsigned int>(k), image);
     images->GetMetaData(static_cast<unsigned int>(k))
-      ->Set(vtkCompositeDataSet::NAME(), ("Image " + std::to_string(k)).c_str());
+      ->Set(vtkCompositeDataSet::NAME(), (tc::kImageBlockPrefix + std::to_string(k)).c_str());
   }
-  output->SetBlock(1, images);
-  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Images");
+  return images;
+}
 
-  // Field data: provenance.
+/// The field data of the atlas: where it came from.
+void AddProvenance(const tc::Atlas& atlas, vtkFieldData* fd)
+{
   vtkNew<vtkStringArray> source;
   source->SetName(tc::kAtlasSource);
   source->InsertNextValue(atlas.source);
-  output->GetFieldData()->AddArray(source);
+  fd->AddArray(source);
   vtkNew<vtkTypeInt64Array> counts;
   counts->SetName(tc::kInputPoints);
   counts->InsertNextValue(atlas.inputPoints);
-  output->GetFieldData()->AddArray(counts);
+  fd->AddArray(counts);
   vtkNew<vtkTypeInt64Array> triangles;
   triangles->SetName(tc::kInputTriangles);
   triangles->InsertNextValue(atlas.inputTriangles);
-  output->GetFieldData()->AddArray(triangles);
+  fd->AddArray(triangles);
   vtkNew<vtkDoubleArray> diagonal;
   diagonal->SetName(tc::kInputDiagonal);
   diagonal->InsertNextValue(atlas.inputDiagonal);
-  output->GetFieldData()->AddArray(diagonal);
+  fd->AddArray(diagonal);
 }
 
-bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
+/// The columns of a chart table, each checked for its type, rows and components.
+struct ChartColumns
 {
-  atlas = tc::Atlas();
-  auto* top = vtkMultiBlockDataSet::SafeDownCast(input);
-  vtkTable* table =
-    top && top->GetNumberOfBlocks() == 2 ? vtkTable::SafeDownCast(top->GetBlock(0)) : nullptr;
-  auto* images = table ? vtkMultiBlockDataSet::SafeDownCast(top->GetBlock(1)) : nullptr;
-  if (!images)
+  vtkIntArray* maxLevel = nullptr;
+  vtkIntArray* corners = nullptr;
+  vtkIntArray* neighborChart = nullptr;
+  vtkIntArray* neighborSide = nullptr;
+  vtkIntArray* featureSide = nullptr;
+  vtkIntArray* partner = nullptr;
+  vtkIntArray* rotated = nullptr;
+  vtkIntArray* origin = nullptr;
+  vtkDoubleArray* box = nullptr;
+  vtkDoubleArray* levelError = nullptr;
+};
+
+/// Finds every column, in table order; false with the first missing one in `error`.
+bool FindChartColumns(vtkTable* table, ChartColumns& t, std::string& error)
+{
+  t.maxLevel = intColumnOf(table, tc::kMaxLevel, 1, error);
+  t.corners = t.maxLevel ? intColumnOf(table, tc::kChartCorners, 3, error) : nullptr;
+  t.neighborChart = t.corners ? intColumnOf(table, tc::kNeighborChart, 3, error) : nullptr;
+  t.neighborSide = t.neighborChart ? intColumnOf(table, tc::kNeighborSide, 3, error) : nullptr;
+  t.featureSide = t.neighborSide ? intColumnOf(table, tc::kFeatureSide, 3, error) : nullptr;
+  t.partner = t.featureSide ? intColumnOf(table, tc::kPartner, 1, error) : nullptr;
+  t.rotated = t.partner ? intColumnOf(table, tc::kRotated, 1, error) : nullptr;
+  t.origin = t.rotated ? intColumnOf(table, tc::kOrigin, 2, error) : nullptr;
+  t.box = t.origin ? doubleColumnOf(table, tc::kBox, 12, error) : nullptr;
+  t.levelError = t.box ? doubleColumnOf(table, tc::kLevelError, 1, error) : nullptr;
+  return t.levelError != nullptr;
+}
+
+/// Row c of the chart table; false when its level exceeds what the columns hold.
+bool ReadChart(const ChartColumns& t, vtkIdType c, tc::AtlasChart& chart, std::string& error)
+{
+  chart.maxLevel = t.maxLevel->GetValue(c);
+  if (chart.maxLevel < 0 || 2 * (chart.maxLevel + 1) > t.origin->GetNumberOfComponents() ||
+    chart.maxLevel + 1 > t.levelError->GetNumberOfComponents())
   {
-    error = "the input is not an atlas (a multiblock of a chart table and images, as made by "
-            "tcGeometryImages or tcAtlasReader)";
+    error = "chart " + std::to_string(c) + " has a level the table's columns do not cover";
     return false;
   }
-
-  // Chart table.
-  const vtkIdType nc = table->GetNumberOfRows();
-  vtkIntArray* maxLevel = intColumnOf(table, tc::kMaxLevel, 1, error);
-  vtkIntArray* corners = maxLevel ? intColumnOf(table, tc::kChartCorners, 3, error) : nullptr;
-  vtkIntArray* neighborChart = corners ? intColumnOf(table, tc::kNeighborChart, 3, error) : nullptr;
-  vtkIntArray* neighborSide =
-    neighborChart ? intColumnOf(table, tc::kNeighborSide, 3, error) : nullptr;
-  vtkIntArray* featureSide =
-    neighborSide ? intColumnOf(table, tc::kFeatureSide, 3, error) : nullptr;
-  vtkIntArray* partner = featureSide ? intColumnOf(table, tc::kPartner, 1, error) : nullptr;
-  vtkIntArray* rotated = partner ? intColumnOf(table, tc::kRotated, 1, error) : nullptr;
-  vtkIntArray* origin = rotated ? intColumnOf(table, tc::kOrigin, 2, error) : nullptr;
-  vtkDoubleArray* box = origin ? doubleColumnOf(table, tc::kBox, 12, error) : nullptr;
-  vtkDoubleArray* levelError = box ? doubleColumnOf(table, tc::kLevelError, 1, error) : nullptr;
-  if (!levelError)
+  chart.partner = t.partner->GetValue(c);
+  chart.rotated = static_cast<uint8_t>(t.rotated->GetValue(c) != 0);
+  for (int k = 0; k < 3; ++k)
   {
-    return false;
+    chart.cornerVertex[static_cast<size_t>(k)] = t.corners->GetTypedComponent(c, k);
+    chart.neighborChart[static_cast<size_t>(k)] = t.neighborChart->GetTypedComponent(c, k);
+    chart.neighborSide[static_cast<size_t>(k)] = t.neighborSide->GetTypedComponent(c, k);
+    chart.featureSide[static_cast<size_t>(k)] =
+      static_cast<uint8_t>(t.featureSide->GetTypedComponent(c, k) != 0);
   }
-  atlas.charts.resize(static_cast<size_t>(nc));
-  for (vtkIdType c = 0; c < nc; ++c)
+  for (int k = 0; k <= chart.maxLevel; ++k)
   {
-    tc::AtlasChart& chart = atlas.charts[static_cast<size_t>(c)];
-    chart.maxLevel = maxLevel->GetValue(c);
-    if (chart.maxLevel < 0 || 2 * (chart.maxLevel + 1) > origin->GetNumberOfComponents() ||
-      chart.maxLevel + 1 > levelError->GetNumberOfComponents())
-    {
-      error = "chart " + std::to_string(c) + " has a level the table's columns do not cover";
-      return false;
-    }
-    chart.partner = partner->GetValue(c);
-    chart.rotated = static_cast<uint8_t>(rotated->GetValue(c) != 0);
-    for (int k = 0; k < 3; ++k)
-    {
-      chart.cornerVertex[static_cast<size_t>(k)] = corners->GetTypedComponent(c, k);
-      chart.neighborChart[static_cast<size_t>(k)] = neighborChart->GetTypedComponent(c, k);
-      chart.neighborSide[static_cast<size_t>(k)] = neighborSide->GetTypedComponent(c, k);
-      chart.featureSide[static_cast<size_t>(k)] =
-        static_cast<uint8_t>(featureSide->GetTypedComponent(c, k) != 0);
-    }
-    for (int k = 0; k <= chart.maxLevel; ++k)
-    {
-      chart.origin.push_back(
-        { origin->GetTypedComponent(c, 2 * k), origin->GetTypedComponent(c, 2 * k + 1) });
-    }
-    for (int i = 0; i < 12; ++i)
-    {
-      chart.box[static_cast<size_t>(i)] = box->GetTypedComponent(c, i);
-    }
-    bool measured = true;
-    for (int d = 0; d <= chart.maxLevel; ++d)
-    {
-      measured &= !std::isnan(levelError->GetTypedComponent(c, d));
-    }
-    for (int d = 0; measured && d <= chart.maxLevel; ++d)
-    {
-      chart.levelError.push_back(levelError->GetTypedComponent(c, d));
-    }
+    chart.origin.push_back(
+      { t.origin->GetTypedComponent(c, 2 * k), t.origin->GetTypedComponent(c, 2 * k + 1) });
   }
+  for (int i = 0; i < 12; ++i)
+  {
+    chart.box[static_cast<size_t>(i)] = t.box->GetTypedComponent(c, i);
+  }
+  bool measured = true;
+  for (int d = 0; d <= chart.maxLevel; ++d)
+  {
+    measured &= !std::isnan(t.levelError->GetTypedComponent(c, d));
+  }
+  for (int d = 0; measured && d <= chart.maxLevel; ++d)
+  {
+    chart.levelError.push_back(t.levelError->GetTypedComponent(c, d));
+  }
+  return true;
+}
 
-  // Images and their attributes: the first image names the attributes, in its array order.
+/// The images and their attributes: the first image names the attributes, in its array order.
+bool ReadImages(vtkMultiBlockDataSet* images, tc::Atlas& atlas, std::string& error)
+{
   for (unsigned int k = 0; k < images->GetNumberOfBlocks(); ++k)
   {
     auto* image = vtkImageData::SafeDownCast(images->GetBlock(k));
@@ -287,9 +291,12 @@ bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
     }
     atlas.images.push_back(std::move(out));
   }
+  return true;
+}
 
-  // Provenance (optional).
-  vtkFieldData* fd = top->GetFieldData();
+/// Where the atlas came from (optional fields).
+void ReadProvenance(vtkFieldData* fd, tc::Atlas& atlas)
+{
   if (auto* source = vtkStringArray::SafeDownCast(fd->GetAbstractArray(tc::kAtlasSource)))
   {
     atlas.source = source->GetNumberOfValues() > 0 ? source->GetValue(0) : std::string();
@@ -306,7 +313,51 @@ bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
   {
     atlas.inputDiagonal = a->GetTuple1(0);
   }
+}
+} // namespace
 
+void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
+{
+  output->Initialize();
+  const int levels = std::max(atlas.maxLevel() + 1, 1);
+  output->SetBlock(0, ChartTable(atlas, levels));
+  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), tc::kChartsBlock);
+  output->SetBlock(1, ImageBlocks(atlas));
+  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), tc::kImagesBlock);
+  AddProvenance(atlas, output->GetFieldData());
+}
+
+bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
+{
+  atlas = tc::Atlas();
+  auto* top = vtkMultiBlockDataSet::SafeDownCast(input);
+  vtkTable* table =
+    top && top->GetNumberOfBlocks() == 2 ? vtkTable::SafeDownCast(top->GetBlock(0)) : nullptr;
+  auto* images = table ? vtkMultiBlockDataSet::SafeDownCast(top->GetBlock(1)) : nullptr;
+  if (!images)
+  {
+    error = "the input is not an atlas (a multiblock of a chart table and images, as made by "
+            "tcGeometryImages or tcAtlasReader)";
+    return false;
+  }
+  ChartColumns columns;
+  if (!FindChartColumns(table, columns, error))
+  {
+    return false;
+  }
+  atlas.charts.resize(static_cast<size_t>(table->GetNumberOfRows()));
+  for (vtkIdType c = 0; c < table->GetNumberOfRows(); ++c)
+  {
+    if (!ReadChart(columns, c, atlas.charts[static_cast<size_t>(c)], error))
+    {
+      return false;
+    }
+  }
+  if (!ReadImages(images, atlas, error))
+  {
+    return false;
+  }
+  ReadProvenance(top->GetFieldData(), atlas);
   try
   {
     tc::validateAtlas(atlas);

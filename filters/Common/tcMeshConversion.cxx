@@ -76,6 +76,11 @@ tc::PolygonSoup ToPolygonSoup(
 
 bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error)
 {
+  if (!input)
+  {
+    error = "no input";
+    return false;
+  }
   const vtkIdType nonSurface =
     input->GetNumberOfVerts() + input->GetNumberOfLines() + input->GetNumberOfStrips();
   vtkCellArray* polys = input->GetPolys();
@@ -112,35 +117,44 @@ bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error)
   return true;
 }
 
-void FromPolygonSoup(const tc::PolygonSoup& soup, vtkPolyData* output)
+namespace
+{
+/// Double-precision points holding `xyz` (#points x 3, interleaved).
+vtkSmartPointer<vtkPoints> MakePoints(const std::vector<double>& xyz)
 {
   auto coords = vtkSmartPointer<vtkDoubleArray>::New();
   coords->SetNumberOfComponents(3);
-  coords->SetNumberOfTuples(soup.numPoints());
-  std::copy(soup.points.begin(), soup.points.end(), coords->GetPointer(0));
+  coords->SetNumberOfTuples(static_cast<vtkIdType>(xyz.size() / 3));
+  std::copy(xyz.begin(), xyz.end(), coords->GetPointer(0));
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetData(coords);
-  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
-  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(soup.offsets.size()));
-  std::copy(soup.offsets.begin(), soup.offsets.end(), offsets->GetPointer(0));
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(soup.connectivity.size()));
-  std::copy(soup.connectivity.begin(), soup.connectivity.end(), connectivity->GetPointer(0));
+  return points;
+}
+} // namespace
+
+vtkSmartPointer<vtkCellArray> MakeCellArray(
+  const std::vector<int64_t>& offsets, const std::vector<int64_t>& connectivity)
+{
+  auto offsetArray = vtkSmartPointer<vtkIdTypeArray>::New();
+  auto connectivityArray = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsetArray->SetNumberOfValues(static_cast<vtkIdType>(offsets.size()));
+  std::copy(offsets.begin(), offsets.end(), offsetArray->GetPointer(0));
+  connectivityArray->SetNumberOfValues(static_cast<vtkIdType>(connectivity.size()));
+  std::copy(connectivity.begin(), connectivity.end(), connectivityArray->GetPointer(0));
   auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  output->SetPoints(points);
-  output->SetPolys(cells);
+  cells->SetData(offsetArray, connectivityArray);
+  return cells;
+}
+
+void FromPolygonSoup(const tc::PolygonSoup& soup, vtkPolyData* output)
+{
+  output->SetPoints(MakePoints(soup.points));
+  output->SetPolys(MakeCellArray(soup.offsets, soup.connectivity));
 }
 
 void FromTriMesh(const tc::TriMesh& mesh, vtkPolyData* output)
 {
-  auto coords = vtkSmartPointer<vtkDoubleArray>::New();
-  coords->SetNumberOfComponents(3);
-  coords->SetNumberOfTuples(mesh.numPoints());
-  std::copy(mesh.points.begin(), mesh.points.end(), coords->GetPointer(0));
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetData(coords);
-
+  vtkSmartPointer<vtkPoints> points = MakePoints(mesh.points);
   auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
   auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
   const int64_t nf = mesh.numTriangles();
@@ -243,6 +257,17 @@ template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int32_
 template TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray<int64_t>(
   const char*, const std::vector<int64_t>&);
 
+vtkSmartPointer<vtkDataArray> MakeIntTuples(
+  const char* name, int components, const std::vector<int32_t>& values)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / static_cast<size_t>(components)));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
 namespace
 {
 vtkDataArray* FindArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
@@ -307,6 +332,16 @@ template TRICHARTCOMMON_EXPORT bool ReadIntArray<uint8_t>(
 template TRICHARTCOMMON_EXPORT bool ReadIntArray<int32_t>(
   vtkDataSetAttributes*, const char*, vtkIdType, std::vector<int32_t>&, std::string&);
 
+template <typename T>
+bool ReadOptionalIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  std::vector<T>& values, std::string& error)
+{
+  return !attributes->GetArray(name) || ReadIntArray(attributes, name, tuples, values, error);
+}
+
+template TRICHARTCOMMON_EXPORT bool ReadOptionalIntArray<uint8_t>(
+  vtkDataSetAttributes*, const char*, vtkIdType, std::vector<uint8_t>&, std::string&);
+
 void SetTextField(vtkFieldData* fd, const char* name, const std::string& text)
 {
   auto lines = vtkSmartPointer<vtkStringArray>::New();
@@ -355,13 +390,8 @@ bool readIntField(
 
 void AddIntField(vtkFieldData* fd, const char* name, int components, const std::vector<int32_t>& v)
 {
-  auto array = vtkSmartPointer<vtkIntArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(v.size() / static_cast<size_t>(components)));
-  std::copy(v.begin(), v.end(), array->GetPointer(0));
   fd->RemoveArray(name);
-  fd->AddArray(array);
+  fd->AddArray(MakeIntTuples(name, components, v));
 }
 
 namespace
@@ -378,7 +408,8 @@ bool readBaseComplexFields(
   }
   if (base.baseEdgeIsFeature.size() != base.baseTriangles.size())
   {
-    error = "BaseEdgeIsFeature and BaseTriangles do not have the same number of faces";
+    error = std::string(tc::kBaseEdgeIsFeature) + " and " + tc::kBaseTriangles +
+      " do not have the same number of faces";
     return false;
   }
   const int32_t nb = static_cast<int32_t>(base.baseVertices.size());
@@ -386,7 +417,7 @@ bool readBaseComplexFields(
   {
     if (v < 0 || v >= numPoints)
     {
-      error = "BaseVertexIds names a point the mesh does not have";
+      error = std::string(tc::kBaseVertexIds) + " names a point the mesh does not have";
       return false;
     }
   }
@@ -394,7 +425,7 @@ bool readBaseComplexFields(
   {
     if (v < 0 || v >= nb)
     {
-      error = "BaseTriangles names a base vertex that does not exist";
+      error = std::string(tc::kBaseTriangles) + " names a base vertex that does not exist";
       return false;
     }
   }
@@ -427,12 +458,38 @@ bool ReadBaseComplex(vtkPolyData* parameterized, tc::BaseComplexResult& base, st
   {
     if (f < 0 || f >= nf)
     {
-      error = "BaseFaceId names a base face that does not exist";
+      error = std::string(tc::kBaseFaceId) + " names a base face that does not exist";
       return false;
     }
   }
   return true;
 }
+
+namespace
+{
+/// True if the paths and base edges of `mesh` fit each other, the `np` points and the base
+/// faces: one non-empty path per base edge, point ids and face edges in range.
+bool PathsConsistent(const tc::PatchMesh& mesh, const tc::BaseComplexResult& base, vtkIdType np)
+{
+  const size_t ne = mesh.baseEdges.size() / 2;
+  bool consistent = mesh.pathOffsets.size() == ne + 1 && mesh.pathOffsets.front() == 0 &&
+    mesh.pathOffsets.back() == static_cast<int64_t>(mesh.pathPoints.size()) &&
+    mesh.faceEdges.size() == base.baseTriangles.size();
+  for (size_t e = 0; consistent && e < ne; ++e)
+  {
+    consistent = mesh.pathOffsets[e] < mesh.pathOffsets[e + 1];
+  }
+  for (int32_t p : mesh.pathPoints)
+  {
+    consistent = consistent && p >= 0 && p < np;
+  }
+  for (int32_t e : mesh.faceEdges)
+  {
+    consistent = consistent && e >= 0 && static_cast<size_t>(e) < ne;
+  }
+  return consistent;
+}
+} // namespace
 
 bool ReadPatchMesh(
   vtkPolyData* patches, tc::PatchMesh& mesh, tc::BaseComplexResult& base, std::string& error)
@@ -477,23 +534,7 @@ bool ReadPatchMesh(
     }
   }
   mesh.pathOffsets.assign(offsets.begin(), offsets.end());
-  const size_t ne = mesh.baseEdges.size() / 2;
-  bool consistent = mesh.pathOffsets.size() == ne + 1 && mesh.pathOffsets.front() == 0 &&
-    mesh.pathOffsets.back() == static_cast<int64_t>(mesh.pathPoints.size()) &&
-    mesh.faceEdges.size() == base.baseTriangles.size();
-  for (size_t e = 0; consistent && e < ne; ++e)
-  {
-    consistent = mesh.pathOffsets[e] < mesh.pathOffsets[e + 1];
-  }
-  for (int32_t p : mesh.pathPoints)
-  {
-    consistent = consistent && p >= 0 && p < np;
-  }
-  for (int32_t e : mesh.faceEdges)
-  {
-    consistent = consistent && e >= 0 && static_cast<size_t>(e) < ne;
-  }
-  if (!consistent)
+  if (!PathsConsistent(mesh, base, np))
   {
     error = "the paths and base edges in the field data do not match each other";
     return false;

@@ -10,10 +10,10 @@
 
 #include "TriChartCommonModule.h"
 
-#include "tc/gim/base_complex.h"
 #include "tc/common/mesh.h"
-#include "tc/gim/path_tracing.h"
 #include "tc/common/progress.h"
+#include "tc/gim/base_complex.h"
+#include "tc/gim/path_tracing.h"
 
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
@@ -23,6 +23,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkCellArray;
 class vtkDataArray;
 class vtkDataSetAttributes;
 class vtkFieldData;
@@ -36,8 +37,9 @@ namespace tcvtk
 TRICHARTCOMMON_EXPORT tc::PolygonSoup ToPolygonSoup(
   vtkPolyData* input, std::vector<int64_t>& polygonCell, int64_t& ignoredCells);
 
-/// The triangles of `input`; returns false and says why in `error` when `input` has cells
-/// that are not triangles (the message tells the user to run tcMeshPreparation first).
+/// The triangles of `input`; returns false and says why in `error` when there is no input
+/// ("no input") or it has cells that are not triangles (the message tells the user to run
+/// tcMeshPreparation first).
 TRICHARTCOMMON_EXPORT bool ToTriMesh(vtkPolyData* input, tc::TriMesh& mesh, std::string& error);
 
 /// Sets points (double precision) and triangles of `output` from a core mesh.
@@ -53,6 +55,10 @@ TRICHARTCOMMON_EXPORT void FromVertexPaths(const tc::TriMesh& mesh,
   const std::vector<int64_t>& offsets, const std::vector<int32_t>& ids, vtkPolyData* output,
   bool asVertices = false);
 
+/// A new vtkCellArray with these offsets (#cells + 1) and connectivity (point ids, back to back).
+TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkCellArray> MakeCellArray(
+  const std::vector<int64_t>& offsets, const std::vector<int64_t>& connectivity);
+
 /// A new double array named `name` holding `values` (#tuples x components, interleaved).
 TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, int components, const std::vector<double>& values);
@@ -60,6 +66,11 @@ TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(
 /// A new integer array from `values`: (un)signed char for 1-byte T, int for 4, vtkIdType for 8.
 template <typename T>
 vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name, const std::vector<T>& values);
+
+/// A new int array named `name` of #values / components tuples (interleaved), for the arrays of
+/// index pairs and triples (SteinerEdge, FeatureEdges, SampleChart).
+TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntTuples(
+  const char* name, int components, const std::vector<int32_t>& values);
 
 /// Copies the array `name` of `attributes` (point or cell data) into `values` as doubles.
 /// Returns false and says which array is missing or has the wrong size in `error`.
@@ -69,6 +80,13 @@ TRICHARTCOMMON_EXPORT bool ReadArray(vtkDataSetAttributes* attributes, const cha
 /// The same for integer arrays (ids, flags); values are rounded to the nearest integer.
 template <typename T>
 bool ReadIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
+  std::vector<T>& values, std::string& error);
+
+/// ReadIntArray for an array a stage uses when present: true with `values` empty when
+/// `attributes` has no array `name`; false, saying why in `error`, when it has one of the wrong
+/// size.
+template <typename T>
+bool ReadOptionalIntArray(vtkDataSetAttributes* attributes, const char* name, vtkIdType tuples,
   std::vector<T>& values, std::string& error);
 
 /// Adds a string array `name` to `fd`, one line of `text` per value.

@@ -7,11 +7,10 @@
 #include "tc/features/crest_lines.h"
 #include "tc/features/curvature.h"
 
-#include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -26,6 +25,54 @@ tcCurvature::tcCurvature()
 
 tcCurvature::~tcCurvature() = default;
 
+namespace
+{
+/// The curvature arrays of the mesh: k1 and k2 side by side, d1 then d2, the mean and Gaussian
+/// curvatures, the fitted normals, the face means, and the vertices next to a crest line.
+void AddCurvatureArrays(const tc::TriMesh& mesh, const tc::CurvatureResult& k,
+  const tc::CrestLines& lines, vtkPolyData* output)
+{
+  std::vector<double> principal(2 * k.k1.size());
+  for (size_t v = 0; v < k.k1.size(); ++v)
+  {
+    principal[2 * v] = k.k1[v];
+    principal[2 * v + 1] = k.k2[v];
+  }
+  std::vector<double> directions(6 * k.k1.size());
+  for (size_t v = 0; v < k.k1.size(); ++v)
+  {
+    std::copy_n(&k.d1[3 * v], 3, &directions[6 * v]);
+    std::copy_n(&k.d2[3 * v], 3, &directions[6 * v + 3]);
+  }
+  vtkPointData* pd = output->GetPointData();
+  pd->AddArray(tcvtk::MakeArray(tc::kPrincipalCurvatures, 2, principal));
+  pd->AddArray(tcvtk::MakeArray(tc::kPrincipalDirections, 6, directions));
+  pd->AddArray(tcvtk::MakeArray(tc::kMeanCurvature, 1, k.mean));
+  pd->AddArray(tcvtk::MakeArray(tc::kGaussianCurvature, 1, k.gaussian));
+  pd->SetNormals(tcvtk::MakeArray(tc::kVertexNormal, 3, k.normals));
+  pd->SetActiveScalars(tc::kMeanCurvature);
+  output->GetCellData()->AddArray(tcvtk::MakeArray(tc::kFaceMeanCurvature, 1, k.faceMean));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kCrestVertex, tc::crestVertices(mesh, lines)));
+}
+
+/// The crest lines as polylines over their own points, with their strength and type.
+void CrestPolylines(const tc::CrestLines& lines, vtkPolyData* crest)
+{
+  vtkNew<vtkPoints> crestPoints;
+  crestPoints->SetDataTypeToDouble();
+  crestPoints->SetNumberOfPoints(static_cast<vtkIdType>(lines.points.size() / 3));
+  for (vtkIdType i = 0; i < crestPoints->GetNumberOfPoints(); ++i)
+  {
+    crestPoints->SetPoint(i, &lines.points[3 * i]);
+  }
+  crest->SetPoints(crestPoints);
+  crest->SetLines(tcvtk::MakeCellArray(lines.offsets, lines.connectivity));
+  crest->GetCellData()->AddArray(tcvtk::MakeArray(tc::kStrength, 1, lines.strength));
+  crest->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kCrestType, lines.type));
+  crest->GetCellData()->SetActiveScalars(tc::kStrength);
+}
+} // namespace
+
 int tcCurvature::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -37,9 +84,9 @@ int tcCurvature::RequestData(
   // 2 and 3. Validate while converting: triangles only.
   tc::TriMesh mesh;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error))
   {
-    vtkErrorMacro("Cannot compute curvature: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot compute curvature: " << error << ".");
     return 0;
   }
 
@@ -71,48 +118,8 @@ int tcCurvature::RequestData(
 
   // 5. Arrays on the mesh; crest lines as polylines.
   output->ShallowCopy(input);
-  std::vector<double> principal(2 * k.k1.size());
-  for (size_t v = 0; v < k.k1.size(); ++v)
-  {
-    principal[2 * v] = k.k1[v];
-    principal[2 * v + 1] = k.k2[v];
-  }
-  std::vector<double> directions(6 * k.k1.size());
-  for (size_t v = 0; v < k.k1.size(); ++v)
-  {
-    std::copy_n(&k.d1[3 * v], 3, &directions[6 * v]);
-    std::copy_n(&k.d2[3 * v], 3, &directions[6 * v + 3]);
-  }
-  vtkPointData* pd = output->GetPointData();
-  pd->AddArray(tcvtk::MakeArray(tc::kPrincipalCurvatures, 2, principal));
-  pd->AddArray(tcvtk::MakeArray(tc::kPrincipalDirections, 6, directions));
-  pd->AddArray(tcvtk::MakeArray(tc::kMeanCurvature, 1, k.mean));
-  pd->AddArray(tcvtk::MakeArray(tc::kGaussianCurvature, 1, k.gaussian));
-  pd->SetNormals(tcvtk::MakeArray(tc::kVertexNormal, 3, k.normals));
-  pd->SetActiveScalars(tc::kMeanCurvature);
-  output->GetCellData()->AddArray(tcvtk::MakeArray(tc::kFaceMeanCurvature, 1, k.faceMean));
-  pd->AddArray(tcvtk::MakeIntArray(tc::kCrestVertex, tc::crestVertices(mesh, lines)));
-
-  vtkNew<vtkPoints> crestPoints;
-  crestPoints->SetDataTypeToDouble();
-  crestPoints->SetNumberOfPoints(static_cast<vtkIdType>(lines.points.size() / 3));
-  for (vtkIdType i = 0; i < crestPoints->GetNumberOfPoints(); ++i)
-  {
-    crestPoints->SetPoint(i, &lines.points[3 * i]);
-  }
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(lines.offsets.size()));
-  std::copy(lines.offsets.begin(), lines.offsets.end(), offsets->GetPointer(0));
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(lines.connectivity.size()));
-  std::copy(lines.connectivity.begin(), lines.connectivity.end(), connectivity->GetPointer(0));
-  vtkNew<vtkCellArray> polylines;
-  polylines->SetData(offsets, connectivity);
-  crest->SetPoints(crestPoints);
-  crest->SetLines(polylines);
-  crest->GetCellData()->AddArray(tcvtk::MakeArray(tc::kStrength, 1, lines.strength));
-  crest->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kCrestType, lines.type));
-  crest->GetCellData()->SetActiveScalars(tc::kStrength);
+  AddCurvatureArrays(mesh, k, lines, output);
+  CrestPolylines(lines, crest);
   return 1;
 }
 

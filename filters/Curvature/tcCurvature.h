@@ -10,19 +10,21 @@
  * (k(s * mesh) = k(mesh) / s) and little on its density.
  *
  * Output port 0: the input mesh with point arrays PrincipalCurvatures (k1 >= k2, positive where
- * convex), PrincipalDirections (d1 then d2, 6 components), MeanCurvature, GaussianCurvature,
- * Normals, CrestVertex (1 next to a crest line: what the clustering stages read), and cell
- * array FaceMeanCurvature.
+ * convex, in 1 / input length units), PrincipalDirections (d1 then d2, 6 components, unit
+ * vectors), MeanCurvature, GaussianCurvature, Normals, CrestVertex (1 next to a crest line:
+ * what the clustering stages read), and cell array FaceMeanCurvature (mean of its vertices).
  * Output port 1: crest lines (ridges, where k1 is maximal along d1, and valleys, where k2 is
  * minimal along d2) as polylines with cell arrays Strength (integral of |k| along the line,
  * dimensionless) and CrestType (0 ridge, 1 valley).
  *
- * The input must be triangles only (run tcMeshPreparation first).
+ * The input must be triangles only (run tcMeshPreparation first); anything else is an error.
  */
 #ifndef tcCurvature_h
 #define tcCurvature_h
 
 #include "TriChartCurvatureModule.h"
+
+#include "tc/features/crest_lines.h" // for the defaults of the properties
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -87,13 +89,13 @@ private:
   tcCurvature(const tcCurvature&) = delete;
   void operator=(const tcCurvature&) = delete;
 
-  int MinNeighbors = 20;
-  int MaxRings = 6;
-  int Degree = 3;
-  bool Robust = true;
-  int RobustIterations = 2;
+  int MinNeighbors = tc::CurvatureOptions{}.minNeighbors;
+  int MaxRings = tc::CurvatureOptions{}.maxRings;
+  int Degree = tc::CurvatureOptions{}.degree;
+  bool Robust = tc::CurvatureOptions{}.robust;
+  int RobustIterations = tc::CurvatureOptions{}.robustIterations;
   bool ComputeCrestLines = true;
-  double CrestStrengthThreshold = 1.0;
+  double CrestStrengthThreshold = tc::CrestLineOptions{}.minStrength;
 };
 
 #endif

@@ -10,7 +10,6 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -20,23 +19,29 @@ vtkStandardNewMacro(tcFeatureRefinement);
 
 tcFeatureRefinement::tcFeatureRefinement()
 {
-  const tc::FeatureRefinementOptions defaults;
-  this->BandFraction = defaults.bandFraction;
-  this->CrestBeta = defaults.crestBeta;
-  this->CurvatureTopFraction = defaults.curvatureTopFraction;
-  this->CurvatureThresholdScale = defaults.curvatureThresholdScale;
-  this->BandRings = defaults.bandRings;
-  this->CutPasses = defaults.cutPasses;
-  this->DihedralWeight = defaults.dihedralWeight;
-  this->JunctionCorners = defaults.junctionCorners;
-  this->StraightenLines = defaults.straightenLines;
-  this->CreaseAngle = defaults.creaseAngle;
-  this->CornerRings = defaults.cornerRings;
-  this->CornerFraction = defaults.cornerFraction;
   this->SetNumberOfOutputPorts(3);
 }
 
 tcFeatureRefinement::~tcFeatureRefinement() = default;
+
+namespace
+{
+/// The feature edges, for the base complex: consecutive vertices of every feature line, as
+/// point-id pairs.
+std::vector<int32_t> FeatureEdges(const tc::FeatureRefinementResult& result)
+{
+  std::vector<int32_t> edges;
+  for (int64_t k = 0; k < result.numLines(); ++k)
+  {
+    for (int64_t i = result.lineOffsets[k]; i + 1 < result.lineOffsets[k + 1]; ++i)
+    {
+      edges.push_back(result.lineVertices[i]);
+      edges.push_back(result.lineVertices[i + 1]);
+    }
+  }
+  return edges;
+}
+} // namespace
 
 int tcFeatureRefinement::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -54,7 +59,7 @@ int tcFeatureRefinement::RequestData(
   std::vector<double> vertexCurvature;
   std::vector<double> faceCurvature;
   std::vector<uint8_t> crest;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
+  if (!tcvtk::ToTriMesh(input, mesh, error) ||
     !tcvtk::ReadIntArray(
       input->GetCellData(), tc::kClusterId, mesh.numTriangles(), clusters, error) ||
     !tcvtk::ReadArray(
@@ -63,13 +68,12 @@ int tcFeatureRefinement::RequestData(
       input->GetCellData(), tc::kFaceMeanCurvature, mesh.numTriangles(), 1, faceCurvature, error))
   {
     vtkErrorMacro("Cannot refine features: "
-      << (input ? error : "no input")
-      << "; apply tcCurvature and tcSpectralClustering before tcFeatureRefinement.");
+      << error << "; apply tcCurvature and tcSpectralClustering before tcFeatureRefinement.");
     return 0;
   }
-  std::string ignored;
-  if (input->GetPointData()->GetArray(tc::kCrestVertex) &&
-    !tcvtk::ReadIntArray(input->GetPointData(), tc::kCrestVertex, mesh.numPoints(), crest, ignored))
+  std::string ignored; // a crest array of the wrong size is not used
+  if (!tcvtk::ReadOptionalIntArray(
+        input->GetPointData(), tc::kCrestVertex, mesh.numPoints(), crest, ignored))
   {
     crest.clear();
   }
@@ -108,23 +112,8 @@ int tcFeatureRefinement::RequestData(
   output->GetPointData()->AddArray(tcvtk::MakeIntArray(tc::kFeatureVertex, result.featureVertex));
   output->GetPointData()->AddArray(tcvtk::MakeIntArray(tc::kCornerVertex, result.cornerVertex));
 
-  // The feature edges, for the base complex: consecutive vertices of every feature line.
-  std::vector<int32_t> edges;
-  for (int64_t k = 0; k < result.numLines(); ++k)
-  {
-    for (int64_t i = result.lineOffsets[k]; i + 1 < result.lineOffsets[k + 1]; ++i)
-    {
-      edges.push_back(result.lineVertices[i]);
-      edges.push_back(result.lineVertices[i + 1]);
-    }
-  }
-  vtkNew<vtkIntArray> edgeArray;
-  edgeArray->SetName(tc::kFeatureEdges);
-  edgeArray->SetNumberOfComponents(2);
-  edgeArray->SetNumberOfTuples(static_cast<vtkIdType>(edges.size() / 2));
-  std::copy(edges.begin(), edges.end(), edgeArray->GetPointer(0));
-  output->GetFieldData()->AddArray(edgeArray);
-
+  output->GetFieldData()->AddArray(
+    tcvtk::MakeIntTuples(tc::kFeatureEdges, 2, FeatureEdges(result)));
   tcvtk::FromVertexPaths(mesh, result.lineOffsets, result.lineVertices, lines);
   lines->GetCellData()->AddArray(tcvtk::MakeArray(tc::kMeanAbsCurvature, 1, result.lineCurvature));
   std::vector<int64_t> single(result.corners.size() + 1);

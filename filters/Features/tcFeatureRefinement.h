@@ -24,6 +24,8 @@
 
 #include "TriChartFeaturesModule.h"
 
+#include "tc/features/feature_refinement.h" // for the defaults of the properties
+
 #include <vtkPolyDataAlgorithm.h>
 
 class TRICHARTFEATURES_EXPORT tcFeatureRefinement : public vtkPolyDataAlgorithm
@@ -53,8 +55,8 @@ public:
   ///@}
 
   ///@{
-  /// Multiplies that curvature threshold (1 is the paper's rule; the default 0.7 keeps creases
-  /// whose curvature varies along them).
+  /// Multiplies that curvature threshold (1 is the paper's rule; the default, below 1, keeps
+  /// creases whose curvature varies along them).
   vtkSetClampMacro(CurvatureThresholdScale, double, 0.0, 100.0);
   vtkGetMacro(CurvatureThresholdScale, double);
   ///@}
@@ -123,19 +125,18 @@ private:
   tcFeatureRefinement(const tcFeatureRefinement&) = delete;
   void operator=(const tcFeatureRefinement&) = delete;
 
-  // Defaults are the core's (tc::FeatureRefinementOptions), set in the constructor.
-  double BandFraction;
-  double CrestBeta;
-  double CurvatureTopFraction;
-  double CurvatureThresholdScale;
-  int BandRings;
-  int CutPasses;
-  double DihedralWeight;
-  bool JunctionCorners;
-  bool StraightenLines;
-  double CreaseAngle;
-  int CornerRings;
-  double CornerFraction;
+  double BandFraction = tc::FeatureRefinementOptions{}.bandFraction;
+  double CrestBeta = tc::FeatureRefinementOptions{}.crestBeta;
+  double CurvatureTopFraction = tc::FeatureRefinementOptions{}.curvatureTopFraction;
+  double CurvatureThresholdScale = tc::FeatureRefinementOptions{}.curvatureThresholdScale;
+  int BandRings = tc::FeatureRefinementOptions{}.bandRings;
+  int CutPasses = tc::FeatureRefinementOptions{}.cutPasses;
+  double DihedralWeight = tc::FeatureRefinementOptions{}.dihedralWeight;
+  bool JunctionCorners = tc::FeatureRefinementOptions{}.junctionCorners;
+  bool StraightenLines = tc::FeatureRefinementOptions{}.straightenLines;
+  double CreaseAngle = tc::FeatureRefinementOptions{}.creaseAngle;
+  int CornerRings = tc::FeatureRefinementOptions{}.cornerRings;
+  double CornerFraction = tc::FeatureRefinementOptions{}.cornerFraction;
 };
 
 #endif

@@ -23,20 +23,33 @@ vtkStandardNewMacro(tcSpectralClustering);
 
 tcSpectralClustering::tcSpectralClustering()
 {
-  const tc::SpectralClusteringOptions defaults;
-  this->NumberOfClusters = defaults.numClusters;
-  this->NumberOfEigenvectors = defaults.numEigenvectors;
-  this->CrestBeta = defaults.crestBeta;
-  this->ExtraEdgeFactor = defaults.extraEdgeFactor;
-  this->NormalSigma = defaults.exactNormalSigma;
-  this->NystromThreshold = defaults.nystromThreshold;
-  this->NystromSamples = defaults.nystromSamples;
-  this->KMeansRestarts = defaults.kmeansRestarts;
-  this->Seed = static_cast<int>(defaults.seed);
   this->SetNumberOfOutputPorts(2);
 }
 
 tcSpectralClustering::~tcSpectralClustering() = default;
+
+namespace
+{
+/// The mesh edges between faces of different clusters, joined into polylines for display.
+void BoundaryPolylines(
+  const tc::TriMesh& mesh, const std::vector<int32_t>& clusterId, vtkPolyData* boundaries)
+{
+  const std::vector<int32_t> pairs =
+    tc::labelBoundaryEdges(tc::buildEdgeTable(mesh.triangles), clusterId);
+  std::vector<int64_t> offsets(pairs.size() / 2 + 1);
+  for (size_t k = 0; k < offsets.size(); ++k)
+  {
+    offsets[k] = static_cast<int64_t>(2 * k);
+  }
+  vtkNew<vtkPolyData> edges;
+  tcvtk::FromVertexPaths(mesh, offsets, pairs, edges);
+  vtkNew<vtkStripper> stripper;
+  stripper->SetInputData(edges);
+  stripper->JoinContiguousSegmentsOn();
+  stripper->Update();
+  boundaries->ShallowCopy(stripper->GetOutput());
+}
+} // namespace
 
 int tcSpectralClustering::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -51,17 +64,17 @@ int tcSpectralClustering::RequestData(
   std::string error;
   std::vector<double> faceCurvature;
   std::vector<uint8_t> crest;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
+  if (!tcvtk::ToTriMesh(input, mesh, error) ||
     !tcvtk::ReadArray(
       input->GetCellData(), tc::kFaceMeanCurvature, mesh.numTriangles(), 1, faceCurvature, error))
   {
-    vtkErrorMacro("Cannot cluster: " << (input ? error : "no input")
-                                     << "; apply tcCurvature before tcSpectralClustering.");
+    vtkErrorMacro(
+      "Cannot cluster: " << error << "; apply tcCurvature before tcSpectralClustering.");
     return 0;
   }
-  std::string ignored;
-  if (input->GetPointData()->GetArray(tc::kCrestVertex) &&
-    !tcvtk::ReadIntArray(input->GetPointData(), tc::kCrestVertex, mesh.numPoints(), crest, ignored))
+  std::string ignored; // a crest array of the wrong size is not used
+  if (!tcvtk::ReadOptionalIntArray(
+        input->GetPointData(), tc::kCrestVertex, mesh.numPoints(), crest, ignored))
   {
     crest.clear();
   }
@@ -93,22 +106,7 @@ int tcSpectralClustering::RequestData(
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kClusterId, result.clusterId));
   output->GetCellData()->SetActiveScalars(tc::kClusterId);
   output->GetFieldData()->AddArray(tcvtk::MakeArray(tc::kEigenvalues, 1, result.eigenvalues));
-
-  const std::vector<int32_t> pairs =
-    tc::labelBoundaryEdges(tc::buildEdgeTable(mesh.triangles), result.clusterId);
-  std::vector<int64_t> offsets(pairs.size() / 2 + 1);
-  for (size_t k = 0; k < offsets.size(); ++k)
-  {
-    offsets[k] = static_cast<int64_t>(2 * k);
-  }
-  vtkNew<vtkPolyData> edges;
-  tcvtk::FromVertexPaths(mesh, offsets, pairs, edges);
-  // Join the boundary edges into longer polylines for display.
-  vtkNew<vtkStripper> stripper;
-  stripper->SetInputData(edges);
-  stripper->JoinContiguousSegmentsOn();
-  stripper->Update();
-  boundaries->ShallowCopy(stripper->GetOutput());
+  BoundaryPolylines(mesh, result.clusterId, boundaries);
   return 1;
 }
 

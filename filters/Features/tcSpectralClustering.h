@@ -11,13 +11,17 @@
  * use the Nystrom approximation. Every connected component is clustered on its own.
  *
  * Input: tcCurvature's output (cell array FaceMeanCurvature; point array CrestVertex is used
- * when present). Output port 0: the mesh with cell array ClusterId and field array Eigenvalues.
- * Output port 1: the cluster boundaries as polylines over mesh edges.
+ * when present). Output port 0: the mesh with cell array ClusterId (0 .. k - 1, every face in
+ * one cluster) and field array Eigenvalues (the largest eigenvalues, descending). Output port 1:
+ * the cluster boundaries as polylines over mesh edges (point array InputPointId). Input that is
+ * not triangles or lacks FaceMeanCurvature is an error that names the stage to apply first.
  */
 #ifndef tcSpectralClustering_h
 #define tcSpectralClustering_h
 
 #include "TriChartFeaturesModule.h"
+
+#include "tc/features/spectral_clustering.h" // for the defaults of the properties
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -55,7 +59,7 @@ public:
   ///@{
   /// When above 0, similarities also fall with the angle between face normals,
   /// exp(-(1 - n_i . n_j) / NormalSigma), which puts boundaries on sharp creases of CAD parts
-  /// (0.05 works on fandisk); 0 (default) is the paper's eq. 3.
+  /// (small values, a few hundredths, follow the creases); 0 (default) is the paper's eq. 3.
   vtkSetClampMacro(NormalSigma, double, 0.0, 100.0);
   vtkGetMacro(NormalSigma, double);
   ///@}
@@ -94,16 +98,16 @@ private:
   tcSpectralClustering(const tcSpectralClustering&) = delete;
   void operator=(const tcSpectralClustering&) = delete;
 
-  // Defaults are the core's (tc::SpectralClusteringOptions), set in the constructor.
-  int NumberOfClusters;
-  int NumberOfEigenvectors;
-  double CrestBeta;
-  double ExtraEdgeFactor;
-  double NormalSigma;
-  vtkIdType NystromThreshold;
-  int NystromSamples;
-  int KMeansRestarts;
-  int Seed;
+  int NumberOfClusters = tc::SpectralClusteringOptions{}.numClusters;
+  int NumberOfEigenvectors = tc::SpectralClusteringOptions{}.numEigenvectors;
+  double CrestBeta = tc::SpectralClusteringOptions{}.crestBeta;
+  double ExtraEdgeFactor = tc::SpectralClusteringOptions{}.extraEdgeFactor;
+  double NormalSigma = tc::SpectralClusteringOptions{}.exactNormalSigma;
+  vtkIdType NystromThreshold = tc::SpectralClusteringOptions{}.nystromThreshold;
+  int NystromSamples = tc::SpectralClusteringOptions{}.nystromSamples;
+  int KMeansRestarts = tc::SpectralClusteringOptions{}.kmeansRestarts;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int Seed = int(tc::SpectralClusteringOptions{}.seed);
 };
 
 #endif

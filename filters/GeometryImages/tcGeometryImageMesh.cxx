@@ -36,6 +36,31 @@ vtkIntArray* tcGeometryImageMesh::GetChartLevels()
   return this->ChartLevels;
 }
 
+namespace
+{
+/// The atlas attributes after Position as point arrays of the rebuilt mesh; Normal becomes its
+/// normals (Normals).
+void AddAtlasAttributes(const tc::Atlas& atlas, const tc::RebuiltMesh& rebuilt, vtkPointData* pd)
+{
+  const vtkIdType np = rebuilt.mesh.numPoints();
+  for (size_t a = 1; a < atlas.attributes.size(); ++a)
+  {
+    vtkNew<vtkFloatArray> array;
+    const bool normal = atlas.attributes[a].name == tc::kAtlasNormal;
+    array->SetName(normal ? tc::kVertexNormal : atlas.attributes[a].name.c_str());
+    array->SetNumberOfComponents(atlas.attributes[a].components);
+    array->SetNumberOfTuples(np);
+    std::copy(
+      rebuilt.attributes[a - 1].begin(), rebuilt.attributes[a - 1].end(), array->GetPointer(0));
+    pd->AddArray(array);
+    if (normal)
+    {
+      pd->SetNormals(array);
+    }
+  }
+}
+} // namespace
+
 int tcGeometryImageMesh::FillInputPortInformation(int, vtkInformation* info)
 {
   // Any data object: ToAtlas explains what an atlas is when it gets something else.
@@ -93,28 +118,8 @@ int tcGeometryImageMesh::RequestData(
 
   // 5. The mesh and its arrays.
   tcvtk::FromTriMesh(rebuilt.mesh, output);
-  const vtkIdType np = rebuilt.mesh.numPoints();
-  for (size_t a = 1; a < atlas.attributes.size(); ++a)
-  {
-    vtkNew<vtkFloatArray> array;
-    const bool normal = atlas.attributes[a].name == tc::kAtlasNormal;
-    array->SetName(normal ? tc::kVertexNormal : atlas.attributes[a].name.c_str());
-    array->SetNumberOfComponents(atlas.attributes[a].components);
-    array->SetNumberOfTuples(np);
-    std::copy(
-      rebuilt.attributes[a - 1].begin(), rebuilt.attributes[a - 1].end(), array->GetPointer(0));
-    output->GetPointData()->AddArray(array);
-    if (normal)
-    {
-      output->GetPointData()->SetNormals(array);
-    }
-  }
-  vtkNew<vtkIntArray> source;
-  source->SetName(tc::kSampleChart);
-  source->SetNumberOfComponents(3);
-  source->SetNumberOfTuples(np);
-  std::copy(rebuilt.pointSource.begin(), rebuilt.pointSource.end(), source->GetPointer(0));
-  output->GetPointData()->AddArray(source);
+  AddAtlasAttributes(atlas, rebuilt, output->GetPointData());
+  output->GetPointData()->AddArray(tcvtk::MakeIntTuples(tc::kSampleChart, 3, rebuilt.pointSource));
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kChartId, rebuilt.chartId));
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kLevel, rebuilt.level));
   output->GetCellData()->SetActiveScalars(tc::kChartId);

@@ -19,17 +19,12 @@
 
 vtkStandardNewMacro(tcGeometryImages);
 
-tcGeometryImages::tcGeometryImages()
-{
-  const tc::GeometryImageOptions defaults;
-  this->SampleBudget = defaults.sampleBudget;
-  this->MinLevel = defaults.minLevel;
-  this->MaxLevel = defaults.maxLevel;
-  this->CurvatureWeight = defaults.curvatureWeight;
-  this->LevelRule = static_cast<int>(defaults.levelRule);
-  this->StretchIterations = defaults.stretchIterations;
-  this->FitSamples = defaults.fitSamples;
-}
+// The property's values are the core's (the default member initializer casts one to the other).
+static_assert(tcGeometryImages::LEVEL_RULE_AREA == static_cast<int>(tc::LevelRule::Area) &&
+    tcGeometryImages::LEVEL_RULE_ERROR == static_cast<int>(tc::LevelRule::Error),
+  "LevelRules and tc::LevelRule must agree");
+
+tcGeometryImages::tcGeometryImages() = default;
 
 tcGeometryImages::~tcGeometryImages() = default;
 
@@ -53,6 +48,34 @@ void tcGeometryImages::ClearResampledArrays()
   }
 }
 
+namespace
+{
+/// The point arrays to resample, each with its components; false, saying which is missing or
+/// of the wrong size in `error`.
+bool ReadResampledArrays(vtkPointData* pd, vtkIdType np, const std::vector<std::string>& names,
+  std::vector<tc::GeometryImageAttribute>& extra, std::string& error)
+{
+  for (const std::string& name : names)
+  {
+    vtkDataArray* array = pd->GetArray(name.c_str());
+    if (!array)
+    {
+      error = "the input has no numeric point array '" + name + "' to resample";
+      return false;
+    }
+    tc::GeometryImageAttribute attribute;
+    attribute.name = name;
+    attribute.components = array->GetNumberOfComponents();
+    if (!tcvtk::ReadArray(pd, name.c_str(), np, attribute.components, attribute.values, error))
+    {
+      return false;
+    }
+    extra.push_back(std::move(attribute));
+  }
+  return true;
+}
+} // namespace
+
 int tcGeometryImages::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
@@ -70,9 +93,9 @@ int tcGeometryImages::RequestData(
   tc::PatchMesh patches;
   tc::BaseComplexResult base;
   std::string error;
-  if (!input || !tcvtk::ReadPatchMesh(input, patches, base, error))
+  if (!tcvtk::ReadPatchMesh(input, patches, base, error))
   {
-    vtkErrorMacro("Cannot build geometry images: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;
   }
   if (this->MinLevel > this->MaxLevel)
@@ -90,25 +113,10 @@ int tcGeometryImages::RequestData(
     return 0;
   }
   std::vector<tc::GeometryImageAttribute> extra;
-  for (const std::string& name : this->ResampledArrays)
+  if (!ReadResampledArrays(input->GetPointData(), np, this->ResampledArrays, extra, error))
   {
-    vtkDataArray* array = input->GetPointData()->GetArray(name.c_str());
-    if (!array)
-    {
-      vtkErrorMacro("Cannot build geometry images: the input has no numeric point array '"
-        << name << "' to resample.");
-      return 0;
-    }
-    tc::GeometryImageAttribute attribute;
-    attribute.name = name;
-    attribute.components = array->GetNumberOfComponents();
-    if (!tcvtk::ReadArray(
-          input->GetPointData(), name.c_str(), np, attribute.components, attribute.values, error))
-    {
-      vtkErrorMacro("Cannot build geometry images: " << error << ".");
-      return 0;
-    }
-    extra.push_back(std::move(attribute));
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
+    return 0;
   }
 
   // 4. Parameterize, resample, pack.

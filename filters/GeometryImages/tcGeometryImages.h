@@ -13,14 +13,18 @@
  * cracks. Two charts of close resolution share each (2^dh + 2) x (2^dh + 1) rectangle. Every chart
  * also gets an oriented bounding box and an error estimate per level.
  *
- * Input: tcPathTracing's first output. Output: the atlas as a multiblock (block 0 the chart
- * table, block 1 one vtkImageData per mip step with float arrays Position, Normal and the
- * point arrays chosen with AddResampledArray); tcAtlasWriter saves it.
+ * Input: tcPathTracing's first output (point array MeanCurvature is used when present).
+ * Output: the atlas as a multiblock (tcAtlasConversion.h): block 0 the chart table, block 1
+ * one vtkImageData per mip step with float arrays Position, Normal (3 components, input units)
+ * and the point arrays chosen with AddResampledArray; tcAtlasWriter saves it. Input without
+ * the patch arrays, a missing resampled array, or MinLevel above MaxLevel is an error.
  */
 #ifndef tcGeometryImages_h
 #define tcGeometryImages_h
 
 #include "TriChartGeometryImagesModule.h"
+
+#include "tc/gim/geometry_images.h" // for the defaults of the properties
 
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
@@ -82,8 +86,8 @@ public:
   /// Fit the samples of every chart's finest level to the surface by least squares (sides to
   /// their paths, interiors to their patches) instead of interpolating the surface at them
   /// (default on): a grid triangle is a chord that lies to one side of a curved surface, and
-  /// fitted samples put it on both sides, lowering the RMS error of the finest level by 13-27%
-  /// on the bench meshes. Feature curves stay sampled on the curve.
+  /// fitted samples put it on both sides, which lowers the RMS error of the finest level.
+  /// Feature curves stay sampled on the curve.
   vtkSetMacro(FitSamples, bool);
   vtkGetMacro(FitSamples, bool);
   vtkBooleanMacro(FitSamples, bool);
@@ -106,13 +110,14 @@ private:
   tcGeometryImages(const tcGeometryImages&) = delete;
   void operator=(const tcGeometryImages&) = delete;
 
-  vtkIdType SampleBudget = 0;
-  int MinLevel = 2;
-  int MaxLevel = 8;
-  double CurvatureWeight = 1.0;
-  int LevelRule = LEVEL_RULE_ERROR;
-  int StretchIterations = 10;
-  bool FitSamples = true;
+  vtkIdType SampleBudget = tc::GeometryImageOptions{}.sampleBudget;
+  int MinLevel = tc::GeometryImageOptions{}.minLevel;
+  int MaxLevel = tc::GeometryImageOptions{}.maxLevel;
+  double CurvatureWeight = tc::GeometryImageOptions{}.curvatureWeight;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int LevelRule = int(tc::GeometryImageOptions{}.levelRule);
+  int StretchIterations = tc::GeometryImageOptions{}.stretchIterations;
+  bool FitSamples = tc::GeometryImageOptions{}.fitSamples;
   std::vector<std::string> ResampledArrays;
 };
 

@@ -11,7 +11,6 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -25,6 +24,98 @@ tcPathTracing::tcPathTracing()
 }
 
 tcPathTracing::~tcPathTracing() = default;
+
+namespace
+{
+/// Point data of the split mesh: the input's kept for input points and interpolated along the
+/// input edge for Steiner points (the MAPS arrays are meaningless for those and are dropped),
+/// then InputPointId, SteinerEdge and SteinerParameter.
+void CopyPointData(vtkPolyData* input, const tc::PatchMesh& patches, vtkPointData* outPoints)
+{
+  const vtkIdType np = patches.mesh.numPoints();
+  const vtkIdType nInput = input->GetNumberOfPoints();
+  vtkNew<vtkPointData> inPoints;
+  inPoints->ShallowCopy(input->GetPointData());
+  inPoints->RemoveArray(tc::kBaseFaceId);
+  inPoints->RemoveArray(tc::kBaseBarycentric);
+  inPoints->RemoveArray(tc::kInputPointId);
+  outPoints->InterpolateAllocate(inPoints, np);
+  for (vtkIdType p = 0; p < nInput; ++p)
+  {
+    outPoints->CopyData(inPoints, p, p);
+  }
+  std::vector<int32_t> steinerEdge(2 * static_cast<size_t>(np), -1);
+  std::vector<double> steinerParameter(static_cast<size_t>(np), 0.0);
+  for (vtkIdType p = nInput; p < np; ++p)
+  {
+    const size_t s = static_cast<size_t>(p - nInput);
+    const int32_t a = patches.steinerEdge[2 * s];
+    const int32_t b = patches.steinerEdge[2 * s + 1];
+    const double t = patches.steinerParameter[s];
+    outPoints->InterpolateEdge(inPoints, p, a, b, t);
+    steinerEdge[2 * static_cast<size_t>(p)] = a;
+    steinerEdge[2 * static_cast<size_t>(p) + 1] = b;
+    steinerParameter[static_cast<size_t>(p)] = t;
+  }
+  outPoints->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, patches.inputPointId));
+  outPoints->AddArray(tcvtk::MakeIntTuples(tc::kSteinerEdge, 2, steinerEdge));
+  outPoints->AddArray(tcvtk::MakeArray(tc::kSteinerParameter, 1, steinerParameter));
+}
+
+/// Cell data of the split mesh: that of the input triangle each piece came from, then PatchId
+/// and InputCellId.
+void CopyCellData(vtkPolyData* input, const tc::PatchMesh& patches, vtkCellData* outCells)
+{
+  vtkCellData* inCells = input->GetCellData();
+  const vtkIdType nf = patches.mesh.numTriangles();
+  outCells->CopyAllocate(inCells, nf);
+  for (vtkIdType f = 0; f < nf; ++f)
+  {
+    outCells->CopyData(inCells, patches.inputTriangle[static_cast<size_t>(f)], f);
+  }
+  outCells->AddArray(tcvtk::MakeIntArray(tc::kPatchId, patches.patchId));
+  outCells->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, patches.inputTriangle));
+  outCells->SetActiveScalars(tc::kPatchId);
+}
+
+/// Field data of the split mesh: the input's, the base complex and the paths, for
+/// tcGeometryImages.
+void AddPathFields(vtkPolyData* input, const tc::BaseComplexResult& base,
+  const tc::PatchMesh& patches, vtkFieldData* fd)
+{
+  fd->ShallowCopy(input->GetFieldData());
+  tcvtk::AddBaseComplexFields(base, fd);
+  tcvtk::AddIntField(fd, tc::kBaseEdges, 2, patches.baseEdges);
+  tcvtk::AddIntField(fd, tc::kFaceEdges, 3, patches.faceEdges);
+  tcvtk::AddIntField(fd, tc::kPathPoints, 1, patches.pathPoints);
+  fd->RemoveArray(tc::kPathOffsets);
+  fd->AddArray(tcvtk::MakeIntArray(tc::kPathOffsets, patches.pathOffsets));
+}
+
+/// Output port 1: the paths, one polyline each, with its base edge and whether it is a feature.
+void PathPolylines(
+  const tc::BaseComplexResult& base, const tc::PatchMesh& patches, vtkPolyData* paths)
+{
+  tcvtk::FromVertexPaths(patches.mesh, patches.pathOffsets, patches.pathPoints, paths);
+  const size_t ne = patches.baseEdges.size() / 2;
+  std::vector<int32_t> edgeIds(ne);
+  std::vector<uint8_t> edgeFeature(ne, 0);
+  for (size_t f = 0; f < patches.faceEdges.size(); ++f)
+  {
+    if (base.baseEdgeIsFeature[f])
+    {
+      edgeFeature[static_cast<size_t>(patches.faceEdges[f])] = 1;
+    }
+  }
+  for (size_t e = 0; e < ne; ++e)
+  {
+    edgeIds[e] = static_cast<int32_t>(e);
+  }
+  paths->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseEdgeId, edgeIds));
+  paths->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseEdgeIsFeature, edgeFeature));
+  paths->GetCellData()->SetActiveScalars(tc::kBaseEdgeId);
+}
+} // namespace
 
 int tcPathTracing::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -41,10 +132,9 @@ int tcPathTracing::RequestData(
   tc::TriMesh mesh;
   tc::BaseComplexResult base;
   std::string error;
-  if (!input || !tcvtk::ToTriMesh(input, mesh, error) ||
-    !tcvtk::ReadBaseComplex(input, base, error))
+  if (!tcvtk::ToTriMesh(input, mesh, error) || !tcvtk::ReadBaseComplex(input, base, error))
   {
-    vtkErrorMacro("Cannot trace paths: " << (input ? error : "no input") << ".");
+    vtkErrorMacro("Cannot trace paths: " << error << ".");
     return 0;
   }
 
@@ -67,86 +157,12 @@ int tcPathTracing::RequestData(
     return 0;
   }
 
-  // 5. The split mesh: input point data kept for input points and interpolated along the input
-  // edge for Steiner points (the MAPS arrays are meaningless for those and are dropped); cell
-  // data of the input triangle each piece came from.
+  // 5. The split mesh with its point, cell and field data; the paths as polylines.
   tcvtk::FromTriMesh(patches.mesh, output);
-  const vtkIdType np = patches.mesh.numPoints();
-  const vtkIdType nInput = input->GetNumberOfPoints();
-  vtkNew<vtkPointData> inPoints;
-  inPoints->ShallowCopy(input->GetPointData());
-  inPoints->RemoveArray(tc::kBaseFaceId);
-  inPoints->RemoveArray(tc::kBaseBarycentric);
-  inPoints->RemoveArray(tc::kInputPointId);
-  vtkPointData* outPoints = output->GetPointData();
-  outPoints->InterpolateAllocate(inPoints, np);
-  for (vtkIdType p = 0; p < nInput; ++p)
-  {
-    outPoints->CopyData(inPoints, p, p);
-  }
-  std::vector<int32_t> steinerEdge(2 * static_cast<size_t>(np), -1);
-  std::vector<double> steinerParameter(static_cast<size_t>(np), 0.0);
-  for (vtkIdType p = nInput; p < np; ++p)
-  {
-    const size_t s = static_cast<size_t>(p - nInput);
-    const int32_t a = patches.steinerEdge[2 * s];
-    const int32_t b = patches.steinerEdge[2 * s + 1];
-    const double t = patches.steinerParameter[s];
-    outPoints->InterpolateEdge(inPoints, p, a, b, t);
-    steinerEdge[2 * static_cast<size_t>(p)] = a;
-    steinerEdge[2 * static_cast<size_t>(p) + 1] = b;
-    steinerParameter[static_cast<size_t>(p)] = t;
-  }
-  outPoints->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, patches.inputPointId));
-  vtkNew<vtkIntArray> edgeArray;
-  edgeArray->SetName(tc::kSteinerEdge);
-  edgeArray->SetNumberOfComponents(2);
-  edgeArray->SetNumberOfTuples(np);
-  std::copy(steinerEdge.begin(), steinerEdge.end(), edgeArray->GetPointer(0));
-  outPoints->AddArray(edgeArray);
-  outPoints->AddArray(tcvtk::MakeArray(tc::kSteinerParameter, 1, steinerParameter));
-
-  vtkCellData* inCells = input->GetCellData();
-  vtkCellData* outCells = output->GetCellData();
-  const vtkIdType nf = patches.mesh.numTriangles();
-  outCells->CopyAllocate(inCells, nf);
-  for (vtkIdType f = 0; f < nf; ++f)
-  {
-    outCells->CopyData(inCells, patches.inputTriangle[static_cast<size_t>(f)], f);
-  }
-  outCells->AddArray(tcvtk::MakeIntArray(tc::kPatchId, patches.patchId));
-  outCells->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, patches.inputTriangle));
-  outCells->SetActiveScalars(tc::kPatchId);
-
-  // The base complex and the paths, for tcGeometryImages.
-  vtkFieldData* fd = output->GetFieldData();
-  fd->ShallowCopy(input->GetFieldData());
-  tcvtk::AddBaseComplexFields(base, fd);
-  tcvtk::AddIntField(fd, tc::kBaseEdges, 2, patches.baseEdges);
-  tcvtk::AddIntField(fd, tc::kFaceEdges, 3, patches.faceEdges);
-  tcvtk::AddIntField(fd, tc::kPathPoints, 1, patches.pathPoints);
-  fd->RemoveArray(tc::kPathOffsets);
-  fd->AddArray(tcvtk::MakeIntArray(tc::kPathOffsets, patches.pathOffsets));
-
-  // Port 1: the paths, one polyline each, with its base edge and whether it is a feature.
-  tcvtk::FromVertexPaths(patches.mesh, patches.pathOffsets, patches.pathPoints, paths);
-  const size_t ne = patches.baseEdges.size() / 2;
-  std::vector<int32_t> edgeIds(ne);
-  std::vector<uint8_t> edgeFeature(ne, 0);
-  for (size_t f = 0; f < patches.faceEdges.size(); ++f)
-  {
-    if (base.baseEdgeIsFeature[f])
-    {
-      edgeFeature[static_cast<size_t>(patches.faceEdges[f])] = 1;
-    }
-  }
-  for (size_t e = 0; e < ne; ++e)
-  {
-    edgeIds[e] = static_cast<int32_t>(e);
-  }
-  paths->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseEdgeId, edgeIds));
-  paths->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kBaseEdgeIsFeature, edgeFeature));
-  paths->GetCellData()->SetActiveScalars(tc::kBaseEdgeId);
+  CopyPointData(input, patches, output->GetPointData());
+  CopyCellData(input, patches, output->GetCellData());
+  AddPathFields(input, base, patches, output->GetFieldData());
+  PathPolylines(base, patches, paths);
   return 1;
 }
 

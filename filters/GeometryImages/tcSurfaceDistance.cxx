@@ -36,6 +36,28 @@ void addFigure(vtkFieldData* fd, const char* name, double value)
   fd->RemoveArray(name);
   fd->AddArray(array);
 }
+
+/// The figures as field arrays, absolute and relative to the reference's diagonal, and as the
+/// text DistanceReport.
+void AddFigures(const tc::SurfaceDistanceResult& r, vtkFieldData* fd)
+{
+  const double diag = r.diagonal > 0 ? r.diagonal : 1.0;
+  addFigure(fd, tc::kHausdorff, r.hausdorff);
+  addFigure(fd, tc::kMeanDistance, r.meanDistance);
+  addFigure(fd, tc::kRmsDistance, r.rmsDistance);
+  addFigure(fd, tc::kRelativeHausdorff, r.hausdorff / diag);
+  addFigure(fd, tc::kRelativeMeanDistance, r.meanDistance / diag);
+  addFigure(fd, tc::kRelativeRmsDistance, r.rmsDistance / diag);
+  addFigure(fd, tc::kReferenceDiagonal, r.diagonal);
+  std::ostringstream report;
+  report << "samples per mesh: " << r.samples << "\n"
+         << "Hausdorff: " << r.hausdorff << " (" << 100.0 * r.hausdorff / diag << "% of diagonal)\n"
+         << "mean: " << r.meanDistance << " (" << 100.0 * r.meanDistance / diag << "%)\n"
+         << "RMS: " << r.rmsDistance << " (" << 100.0 * r.rmsDistance / diag << "%)\n"
+         << "mesh to reference max: " << r.forwardMax
+         << ", reference to mesh max: " << r.backwardMax << "\n";
+  tcvtk::SetTextField(fd, tc::kDistanceReport, report.str());
+}
 } // namespace
 
 int tcSurfaceDistance::RequestData(
@@ -90,23 +112,7 @@ int tcSurfaceDistance::RequestData(
   output->ShallowCopy(input);
   output->GetPointData()->AddArray(tcvtk::MakeArray(tc::kDistance, 1, r.pointDistance));
   output->GetPointData()->SetActiveScalars(tc::kDistance);
-  vtkFieldData* fd = output->GetFieldData();
-  const double diag = r.diagonal > 0 ? r.diagonal : 1.0;
-  addFigure(fd, "Hausdorff", r.hausdorff);
-  addFigure(fd, "MeanDistance", r.meanDistance);
-  addFigure(fd, "RmsDistance", r.rmsDistance);
-  addFigure(fd, "RelativeHausdorff", r.hausdorff / diag);
-  addFigure(fd, "RelativeMeanDistance", r.meanDistance / diag);
-  addFigure(fd, "RelativeRmsDistance", r.rmsDistance / diag);
-  addFigure(fd, "ReferenceDiagonal", r.diagonal);
-  std::ostringstream report;
-  report << "samples per mesh: " << r.samples << "\n"
-         << "Hausdorff: " << r.hausdorff << " (" << 100.0 * r.hausdorff / diag << "% of diagonal)\n"
-         << "mean: " << r.meanDistance << " (" << 100.0 * r.meanDistance / diag << "%)\n"
-         << "RMS: " << r.rmsDistance << " (" << 100.0 * r.rmsDistance / diag << "%)\n"
-         << "mesh to reference max: " << r.forwardMax
-         << ", reference to mesh max: " << r.backwardMax << "\n";
-  tcvtk::SetTextField(fd, tc::kDistanceReport, report.str());
+  AddFigures(r, output->GetFieldData());
   return 1;
 }
 

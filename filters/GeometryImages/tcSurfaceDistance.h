@@ -8,14 +8,17 @@
  * reference (e.g. the original mesh). Both surfaces are sampled densely and deterministically
  * (vertices plus area-proportional points on the triangles) and each sample is measured to the
  * other surface. The output is the first input with point array Distance (each point's distance
- * to the reference) and field arrays Hausdorff, MeanDistance, RmsDistance (absolute) and the
- * same divided by the reference's bounding-box diagonal (RelativeHausdorff, ...), plus a
- * DistanceReport text.
+ * to the reference, in input units) and one-value field arrays Hausdorff, MeanDistance,
+ * RmsDistance (absolute), the same divided by the reference's bounding-box diagonal
+ * (RelativeHausdorff, RelativeMeanDistance, RelativeRmsDistance), ReferenceDiagonal, and the
+ * DistanceReport text. Either input missing or not made of triangles is an error.
  */
 #ifndef tcSurfaceDistance_h
 #define tcSurfaceDistance_h
 
 #include "TriChartGeometryImagesModule.h"
+
+#include "tc/metrics/surface_distance.h" // for the defaults of the properties
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -61,8 +64,9 @@ private:
   tcSurfaceDistance(const tcSurfaceDistance&) = delete;
   void operator=(const tcSurfaceDistance&) = delete;
 
-  vtkIdType SamplesPerMesh = 0;
-  int Seed = 1;
+  vtkIdType SamplesPerMesh = tc::SurfaceDistanceOptions{}.samplesPerMesh;
+  // int(...), not static_cast: VTK's wrapper parser cannot read a static_cast here.
+  int Seed = int(tc::SurfaceDistanceOptions{}.seed);
   double Hausdorff = 0.0;
   double MeanDistance = 0.0;
   double RmsDistance = 0.0;

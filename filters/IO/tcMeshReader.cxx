@@ -6,8 +6,8 @@
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
 #include "tc/io/off_io.h"
-#include "tc/io/soup_io.h"
 #include "tc/io/scene_io.h"
+#include "tc/io/soup_io.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 vtkStandardNewMacro(tcMeshReader);
@@ -44,12 +45,16 @@ bool EndsWith(const std::string& s, const std::string& suffix)
     s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// The format key of a file name: "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk", one of
-/// tc::sceneExtensions() (read through Assimp), or "".
+/// The mesh formats read without Assimp, by extension (no one ends another after a dot), in the
+/// order messages list them.
+constexpr const char* kMeshExtensions[] = { "ply", "ply.gz", "obj", "stl", "off", "vtp", "vtk" };
+
+/// The format key of a file name: one of kMeshExtensions, one of tc::sceneExtensions() (read
+/// through Assimp), or "".
 std::string FormatOf(const std::string& fileName)
 {
   const std::string name = Lower(fileName);
-  for (const char* ext : { "ply.gz", "ply", "obj", "stl", "off", "vtp", "vtk" })
+  for (const char* ext : kMeshExtensions)
   {
     if (EndsWith(name, std::string(".") + ext))
     {
@@ -61,6 +66,18 @@ std::string FormatOf(const std::string& fileName)
     return name.substr(name.rfind('.') + 1);
   }
   return std::string();
+}
+
+/// The mesh extensions for a sentence: ".ply, .ply.gz, ... and .vtk".
+std::string MeshExtensionList()
+{
+  const size_t n = std::size(kMeshExtensions);
+  std::string list;
+  for (size_t i = 0; i < n; ++i)
+  {
+    list += (i == 0 ? "." : i + 1 == n ? " and ." : ", .") + std::string(kMeshExtensions[i]);
+  }
+  return list;
 }
 
 /// "N thing" or "N things".
@@ -83,6 +100,157 @@ public:
   }
   std::string Text;
 };
+
+/// What one reader gave: the mesh (null when nothing was read), its error text, and for a
+/// scene file the facts the report adds. `aborted`: the user stopped the read.
+struct ReadResult
+{
+  vtkSmartPointer<vtkPolyData> mesh;
+  std::string error;
+  std::string sceneReport;
+  bool aborted = false;
+};
+
+/// The report lines of a scene file: its meshes, skins, animations and skipped primitives.
+std::string SceneReport(const tc::Scene& scene)
+{
+  std::ostringstream facts;
+  facts << Count(static_cast<int64_t>(scene.meshNames.size()), "mesh", "meshes") << " ("
+        << scene.meshInstances << " placed by the scene's nodes; cell array " << tc::kSceneMeshId
+        << "), in the rest pose\n";
+  if (scene.skinnedMeshes > 0)
+  {
+    facts << "skinned: " << Count(scene.skinnedMeshes, "mesh", "meshes") << ", "
+          << Count(scene.bones, "bone", "bones") << " (skin weights not read)\n";
+  }
+  if (scene.animations + scene.morphTargets > 0)
+  {
+    facts << Count(scene.animations, "animation", "animations") << " and "
+          << Count(scene.morphTargets, "morph target", "morph targets") << " not applied\n";
+  }
+  if (scene.skippedPrimitives > 0)
+  {
+    facts << "skipped " << Count(scene.skippedPrimitives, "point or line", "points and lines")
+          << "\n";
+  }
+  return (scene.importer.empty() ? "" : "importer: " + scene.importer + "\n") + facts.str();
+}
+
+/// The surfaces of a scene file through Assimp (tc::readScene), with cell array SceneMeshId.
+ReadResult ReadScene(const std::string& fileName, const tc::Progress& progress)
+{
+  ReadResult read;
+  try
+  {
+    const tc::Scene scene = tc::readScene(fileName, progress);
+    read.mesh = vtkSmartPointer<vtkPolyData>::New();
+    tcvtk::FromPolygonSoup(scene.soup, read.mesh);
+    read.mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene.meshId));
+    read.sceneReport = SceneReport(scene);
+  }
+  catch (const tc::Aborted&)
+  {
+    read.aborted = true;
+  }
+  catch (const std::exception& e)
+  {
+    read.error = e.what();
+  }
+  return read;
+}
+
+/// True for the formats the core reads: OFF, PLY (also gzip-compressed) and OBJ.
+bool IsCoreFormat(const std::string& format)
+{
+  return format == "off" || format == "ply" || format == "ply.gz" || format == "obj";
+}
+
+/// An OFF, PLY or OBJ file through the core's readers: for PLY and OBJ tc::readPLY and
+/// tc::readOBJ, not vtkPLYReader and vtkOBJReader, which crash on truncated or damaged files.
+ReadResult ReadWithCore(const std::string& fileName, const std::string& format)
+{
+  ReadResult read;
+  try
+  {
+    const tc::PolygonSoup soup = format == "off" ? tc::readOFF(fileName)
+      : format == "obj"                          ? tc::readOBJ(fileName)
+                                                 : tc::readPLY(fileName);
+    read.mesh = vtkSmartPointer<vtkPolyData>::New();
+    tcvtk::FromPolygonSoup(soup, read.mesh);
+  }
+  catch (const std::exception& e)
+  {
+    read.error = e.what();
+  }
+  return read;
+}
+
+/// An STL, VTP or legacy VTK file through VTK's readers, whose first error message is kept.
+/// Legacy VTK files may hold any dataset; non-polydata is reduced to its outer surface.
+ReadResult ReadWithVTK(const std::string& fileName, const std::string& format)
+{
+  vtkNew<ErrorCatcher> catcher;
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (format == "stl")
+  {
+    vtkNew<vtkSTLReader> stl;
+    stl->SetFileName(fileName.c_str());
+    stl->MergingOff();
+    reader = stl;
+  }
+  else if (format == "vtp")
+  {
+    vtkNew<vtkXMLPolyDataReader> vtp;
+    vtp->SetFileName(fileName.c_str());
+    reader = vtp;
+  }
+  else
+  {
+    vtkNew<vtkGenericDataObjectReader> legacy;
+    legacy->SetFileName(fileName.c_str());
+    vtkNew<vtkDataSetSurfaceFilter> surface;
+    surface->SetInputConnection(legacy->GetOutputPort());
+    legacy->AddObserver(vtkCommand::ErrorEvent, catcher);
+    reader = surface;
+  }
+  reader->AddObserver(vtkCommand::ErrorEvent, catcher);
+  reader->Update();
+  ReadResult read;
+  read.mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  read.error = catcher->Text;
+  return read;
+}
+
+/// The reader's report: what was read from where, the cell counts, the scene facts, and the
+/// point and cell arrays, one item per line.
+std::string ReadReport(const std::string& fileName, const std::string& format, vtkPolyData* output,
+  const std::string& sceneReport)
+{
+  std::ostringstream report;
+  report << "read " << format << " file '" << fileName << "'\n"
+         << output->GetNumberOfPoints() << " points, " << output->GetNumberOfPolys() << " polygons";
+  if (output->GetNumberOfStrips() > 0)
+  {
+    report << ", " << output->GetNumberOfStrips() << " triangle strips";
+  }
+  if (output->GetNumberOfLines() + output->GetNumberOfVerts() > 0)
+  {
+    report << ", " << output->GetNumberOfLines() + output->GetNumberOfVerts()
+           << " vertices/lines (not surface cells)";
+  }
+  report << "\n" << sceneReport;
+  for (int i = 0; i < output->GetPointData()->GetNumberOfArrays(); ++i)
+  {
+    const char* name = output->GetPointData()->GetArrayName(i);
+    report << "point array " << (name ? name : "(unnamed)") << "\n";
+  }
+  for (int i = 0; i < output->GetCellData()->GetNumberOfArrays(); ++i)
+  {
+    const char* name = output->GetCellData()->GetArrayName(i);
+    report << "cell array " << (name ? name : "(unnamed)") << "\n";
+  }
+  return report.str();
+}
 }
 
 tcMeshReader::tcMeshReader()
@@ -99,8 +267,15 @@ bool tcMeshReader::CanReadFile(const char* fileName)
 
 const char* tcMeshReader::GetSupportedExtensions()
 {
-  static const std::string extensions =
-    std::string("ply ply.gz obj stl off vtp vtk ") + tc::sceneExtensions();
+  static const std::string extensions = []
+  {
+    std::string list;
+    for (const char* ext : kMeshExtensions)
+    {
+      list += std::string(ext) + " ";
+    }
+    return list + tc::sceneExtensions();
+  }();
   return extensions.c_str();
 }
 
@@ -126,148 +301,37 @@ int tcMeshReader::RequestData(
   const std::string format = FormatOf(this->FileName);
   if (format.empty())
   {
-    vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads ."
-                                  << "ply, .ply.gz, .obj, .stl, .off, .vtp and .vtk meshes, and "
-                                  << "the scene formats " << tc::sceneExtensions() << ".");
+    vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads "
+                                  << MeshExtensionList() << " meshes, and the scene formats "
+                                  << tc::sceneExtensions() << ".");
     return 0;
   }
 
-  // 3. Read with the reader of that format, catching its error messages.
-  vtkNew<ErrorCatcher> catcher;
-  vtkSmartPointer<vtkPolyData> mesh;
-  vtkSmartPointer<vtkAlgorithm> reader;
-  std::string error;
-  std::string sceneReport;
-  if (tc::isSceneFile(this->FileName))
+  // 3. Read with the reader of that format.
+  const ReadResult read = tc::isSceneFile(this->FileName)
+    ? ReadScene(this->FileName, tcvtk::MakeProgress(this))
+    : IsCoreFormat(format) ? ReadWithCore(this->FileName, format)
+                           : ReadWithVTK(this->FileName, format);
+  if (read.aborted)
   {
-    try
-    {
-      const tc::Scene scene = tc::readScene(this->FileName, tcvtk::MakeProgress(this));
-      mesh = vtkSmartPointer<vtkPolyData>::New();
-      tcvtk::FromPolygonSoup(scene.soup, mesh);
-      mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene.meshId));
-      std::ostringstream facts;
-      facts << Count(static_cast<int64_t>(scene.meshNames.size()), "mesh", "meshes") << " ("
-            << scene.meshInstances << " placed by the scene's nodes; cell array "
-            << tc::kSceneMeshId << "), in the rest pose\n";
-      if (scene.skinnedMeshes > 0)
-      {
-        facts << "skinned: " << Count(scene.skinnedMeshes, "mesh", "meshes") << ", "
-              << Count(scene.bones, "bone", "bones") << " (skin weights not read)\n";
-      }
-      if (scene.animations + scene.morphTargets > 0)
-      {
-        facts << Count(scene.animations, "animation", "animations") << " and "
-              << Count(scene.morphTargets, "morph target", "morph targets") << " not applied\n";
-      }
-      if (scene.skippedPrimitives > 0)
-      {
-        facts << "skipped " << Count(scene.skippedPrimitives, "point or line", "points and lines")
-              << "\n";
-      }
-      sceneReport = (scene.importer.empty() ? "" : "importer: " + scene.importer + "\n") +
-        facts.str();
-    }
-    catch (const tc::Aborted&)
-    {
-      return 0;
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
-  }
-  else if (format == "off" || format == "ply" || format == "ply.gz" || format == "obj")
-  {
-    // The core readers; for PLY and OBJ tc::readPLY and tc::readOBJ, not vtkPLYReader and
-    // vtkOBJReader, which crash on truncated or damaged files.
-    try
-    {
-      const tc::PolygonSoup soup = format == "off" ? tc::readOFF(this->FileName)
-        : format == "obj"                          ? tc::readOBJ(this->FileName)
-                                                   : tc::readPLY(this->FileName);
-      mesh = vtkSmartPointer<vtkPolyData>::New();
-      tcvtk::FromPolygonSoup(soup, mesh);
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
-  }
-  else if (format == "stl")
-  {
-    vtkNew<vtkSTLReader> stl;
-    stl->SetFileName(this->FileName.c_str());
-    stl->MergingOff();
-    reader = stl;
-  }
-  else if (format == "vtp")
-  {
-    vtkNew<vtkXMLPolyDataReader> vtp;
-    vtp->SetFileName(this->FileName.c_str());
-    reader = vtp;
-  }
-  else
-  {
-    // Legacy VTK files may hold any dataset; non-polydata is reduced to its outer surface.
-    vtkNew<vtkGenericDataObjectReader> legacy;
-    legacy->SetFileName(this->FileName.c_str());
-    vtkNew<vtkDataSetSurfaceFilter> surface;
-    surface->SetInputConnection(legacy->GetOutputPort());
-    legacy->AddObserver(vtkCommand::ErrorEvent, catcher);
-    reader = surface;
-  }
-  if (reader)
-  {
-    reader->AddObserver(vtkCommand::ErrorEvent, catcher);
-    reader->Update();
-    mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-    if (!catcher->Text.empty())
-    {
-      error = catcher->Text;
-    }
+    return 0;
   }
 
   // 4. A file without polygons is an error, whatever the reader said.
-  const vtkIdType polygons = mesh ? mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() : 0;
-  if (!error.empty() || polygons == 0)
+  const vtkIdType polygons =
+    read.mesh ? read.mesh->GetNumberOfPolys() + read.mesh->GetNumberOfStrips() : 0;
+  if (!read.error.empty() || polygons == 0)
   {
-    if (error.empty())
-    {
-      error = "no polygons found";
-    }
-    vtkErrorMacro("Cannot read '" << this->FileName << "' as " << format << ": " << error
+    vtkErrorMacro("Cannot read '" << this->FileName << "' as " << format << ": "
+                                  << (read.error.empty() ? "no polygons found" : read.error)
                                   << ". Check that the file is a complete " << format
                                   << " surface mesh.");
     return 0;
   }
 
   // 5. Output and report.
-  output->ShallowCopy(mesh);
-  std::ostringstream report;
-  report << "read " << format << " file '" << this->FileName << "'\n"
-         << output->GetNumberOfPoints() << " points, " << output->GetNumberOfPolys() << " polygons";
-  if (output->GetNumberOfStrips() > 0)
-  {
-    report << ", " << output->GetNumberOfStrips() << " triangle strips";
-  }
-  if (output->GetNumberOfLines() + output->GetNumberOfVerts() > 0)
-  {
-    report << ", " << output->GetNumberOfLines() + output->GetNumberOfVerts()
-           << " vertices/lines (not surface cells)";
-  }
-  report << "\n" << sceneReport;
-  for (int i = 0; i < output->GetPointData()->GetNumberOfArrays(); ++i)
-  {
-    const char* name = output->GetPointData()->GetArrayName(i);
-    report << "point array " << (name ? name : "(unnamed)") << "\n";
-  }
-  for (int i = 0; i < output->GetCellData()->GetNumberOfArrays(); ++i)
-  {
-    const char* name = output->GetCellData()->GetArrayName(i);
-    report << "cell array " << (name ? name : "(unnamed)") << "\n";
-  }
-  this->Report = report.str();
+  output->ShallowCopy(read.mesh);
+  this->Report = ReadReport(this->FileName, format, output, read.sceneReport);
   tcvtk::SetTextField(output->GetFieldData(), tc::kReaderReport, this->Report);
   return 1;
 }

@@ -64,6 +64,53 @@ void CopyArrays(
     }
   }
 }
+
+/// The output's arrays: the input's point and cell arrays carried over (through InputPointId
+/// and the input cell of each triangle, `inputCells`), where each element came from, the
+/// non-manifold and boundary flags, the components, and the input's field data.
+void AddPreparationArrays(vtkPolyData* input, const tc::PreparationResult& result,
+  const std::vector<int64_t>& inputCells, vtkPolyData* output)
+{
+  CopyArrays(input->GetPointData(), output->GetPointData(), result.inputPointId);
+  CopyArrays(input->GetCellData(), output->GetCellData(), inputCells);
+  vtkPointData* pd = output->GetPointData();
+  vtkCellData* cd = output->GetCellData();
+  pd->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.inputPointId));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldVertex, result.nonManifoldVertex));
+  pd->AddArray(tcvtk::MakeIntArray(tc::kBoundaryVertex, result.boundaryVertex));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, inputCells));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldEdge, result.nonManifoldEdge));
+  cd->AddArray(tcvtk::MakeIntArray(tc::kComponentId, result.componentId));
+  output->GetFieldData()->PassData(input->GetFieldData());
+}
+} // namespace
+
+void tcMeshPreparation::ClearReport()
+{
+  this->Report.clear();
+  this->Changed = false;
+  this->NonManifoldEdges = this->NonManifoldVertices = this->BoundaryEdges = 0;
+  this->OpenHoles = this->NonOrientableComponents = 0;
+  this->ClosedManifold = false;
+  this->ClosedManifoldRepairs.clear();
+}
+
+void tcMeshPreparation::RecordReport(
+  const tc::PreparationReport& counts, const tc::PreparationOptions& options, int64_t ignored)
+{
+  this->NonManifoldEdges = counts.nonManifoldEdges;
+  this->NonManifoldVertices = counts.nonManifoldVertices;
+  this->BoundaryEdges = counts.boundaryEdges;
+  this->OpenHoles = counts.openHoles;
+  this->NonOrientableComponents = counts.nonOrientableComponents;
+  this->ClosedManifold = tc::closedManifold(counts, options);
+  this->ClosedManifoldRepairs = tc::closedManifoldRepairs(counts, options);
+  this->Report = counts.text();
+  if (ignored > 0)
+  {
+    this->Report += "ignored " + std::to_string(ignored) + " vertex and line cells\n";
+  }
+  this->Changed = counts.changed() || ignored > 0;
 }
 
 int tcMeshPreparation::RequestData(
@@ -72,12 +119,7 @@ int tcMeshPreparation::RequestData(
   // 1. Input and output.
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  this->Report.clear();
-  this->Changed = false;
-  this->NonManifoldEdges = this->NonManifoldVertices = this->BoundaryEdges = 0;
-  this->OpenHoles = this->NonOrientableComponents = 0;
-  this->ClosedManifold = false;
-  this->ClosedManifoldRepairs.clear();
+  this->ClearReport();
 
   // 2. Validate: a surface needs polygons; the core checks everything else.
   if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
@@ -119,32 +161,8 @@ int tcMeshPreparation::RequestData(
   {
     inputCells[f] = result.inputCellId[f] < 0 ? -1 : polygonCell[result.inputCellId[f]];
   }
-  CopyArrays(input->GetPointData(), output->GetPointData(), result.inputPointId);
-  CopyArrays(input->GetCellData(), output->GetCellData(), inputCells);
-  vtkPointData* pd = output->GetPointData();
-  vtkCellData* cd = output->GetCellData();
-  pd->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, result.inputPointId));
-  pd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldVertex, result.nonManifoldVertex));
-  pd->AddArray(tcvtk::MakeIntArray(tc::kBoundaryVertex, result.boundaryVertex));
-  cd->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, inputCells));
-  cd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldEdge, result.nonManifoldEdge));
-  cd->AddArray(tcvtk::MakeIntArray(tc::kComponentId, result.componentId));
-  output->GetFieldData()->PassData(input->GetFieldData());
-
-  const tc::PreparationReport& counts = result.report;
-  this->NonManifoldEdges = counts.nonManifoldEdges;
-  this->NonManifoldVertices = counts.nonManifoldVertices;
-  this->BoundaryEdges = counts.boundaryEdges;
-  this->OpenHoles = counts.openHoles;
-  this->NonOrientableComponents = counts.nonOrientableComponents;
-  this->ClosedManifold = tc::closedManifold(counts, options);
-  this->ClosedManifoldRepairs = tc::closedManifoldRepairs(counts, options);
-  this->Report = counts.text();
-  if (ignored > 0)
-  {
-    this->Report += "ignored " + std::to_string(ignored) + " vertex and line cells\n";
-  }
-  this->Changed = result.report.changed() || ignored > 0;
+  AddPreparationArrays(input, result, inputCells, output);
+  this->RecordReport(result.report, options, ignored);
   tcvtk::SetTextField(output->GetFieldData(), tc::kPreparationReport, this->Report);
   if (result.report.nonManifoldEdges + result.report.nonManifoldVertices > 0 &&
     !this->SplitNonManifold)

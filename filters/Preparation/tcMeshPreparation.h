@@ -20,6 +20,8 @@
 
 #include "TriChartPreparationModule.h"
 
+#include "tc/prep/mesh_preparation.h" // for the defaults of the properties
+
 #include <vtkPolyDataAlgorithm.h>
 
 #include <string>
@@ -73,12 +75,12 @@ public:
   vtkBooleanMacro(RemoveSlivers, bool);
 
   /// With RemoveSlivers: a triangle with a larger angle (degrees) is a cap (default 170).
-  vtkSetClampMacro(SliverAngle, double, 120.0, 180.0);
+  vtkSetClampMacro(SliverAngle, double, tc::kMinSliverAngle, 180.0);
   vtkGetMacro(SliverAngle, double);
 
   /// With RemoveSlivers: a triangle whose longest side exceeds its shortest by a larger ratio is
   /// a needle (default 10).
-  vtkSetClampMacro(SliverEdgeRatio, double, 3.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(SliverEdgeRatio, double, tc::kMinSliverEdgeRatio, VTK_DOUBLE_MAX);
   vtkGetMacro(SliverEdgeRatio, double);
   ///@}
 
@@ -119,14 +121,19 @@ private:
   tcMeshPreparation(const tcMeshPreparation&) = delete;
   void operator=(const tcMeshPreparation&) = delete;
 
-  double MergeTolerance = 0.0;
-  bool SplitNonManifold = false;
-  bool Orient = true;
-  bool FillHoles = false;
-  vtkIdType MaxHoleEdges = 1000;
-  bool RemoveSlivers = false;
-  double SliverAngle = 170.0;
-  double SliverEdgeRatio = 10.0;
+  /// The counts, flags and report of the last run: cleared, then set from the core's report.
+  void ClearReport();
+  void RecordReport(
+    const tc::PreparationReport& counts, const tc::PreparationOptions& options, int64_t ignored);
+
+  double MergeTolerance = tc::PreparationOptions{}.mergeTolerance;
+  bool SplitNonManifold = tc::PreparationOptions{}.splitNonManifold;
+  bool Orient = tc::PreparationOptions{}.orient;
+  bool FillHoles = tc::PreparationOptions{}.fillHoles;
+  vtkIdType MaxHoleEdges = tc::PreparationOptions{}.maxHoleEdges;
+  bool RemoveSlivers = tc::PreparationOptions{}.removeSlivers;
+  double SliverAngle = tc::PreparationOptions{}.sliverAngle;
+  double SliverEdgeRatio = tc::PreparationOptions{}.sliverEdgeRatio;
   std::string Report;
   bool Changed = false;
   vtkIdType NonManifoldEdges = 0;

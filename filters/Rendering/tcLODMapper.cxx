@@ -2,11 +2,10 @@
 #include "tcLODMapper.h"
 
 #include "tcAtlasConversion.h"
+#include "tcLODAtlasData.h"
 
 #include "tc/gim/atlas.h"
-#include "tc/gim/geometry_image_mesh.h"
 #include "tc/gim/lod_selection.h"
-#include "tc/common/parallel.h"
 
 #include "tcGeometryImageBeginVS.h"
 #include "tcGeometryImageColorDecFS.h"
@@ -16,32 +15,27 @@
 #include "tcGeometryImagePositionVS.h"
 
 #include <vtkActor.h>
-#include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
-#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLBufferObject.h>
 #include <vtkOpenGLHelper.h>
 #include <vtkOpenGLIndexBufferObject.h>
-#include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLPolyDataMapper.h>
+#include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLShaderProperty.h>
+#include <vtkOpenGLState.h>
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkOpenGLVertexBufferObject.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarsToColors.h>
 #include <vtkShaderProgram.h>
-#include <vtkOpenGLState.h>
 #include <vtkTextureUnitManager.h>
 #include <vtkTransformFeedback.h>
 #include <vtk_glew.h>
@@ -49,8 +43,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -71,8 +65,8 @@ struct BufferTexture
     // An empty buffer texture is not allowed; one zero texel stands in. The values themselves
     // go up uncopied: the draw list is uploaded every frame.
     static const T zeros[4] = {};
-    this->buffer->Upload(values.empty() ? zeros : values.data(),
-      values.empty() ? 4 : values.size(), vtkOpenGLBufferObject::TextureBuffer);
+    this->buffer->Upload(values.empty() ? zeros : values.data(), values.empty() ? 4 : values.size(),
+      vtkOpenGLBufferObject::TextureBuffer);
     if (this->texture == 0)
     {
       glGenTextures(1, &this->texture);
@@ -113,37 +107,6 @@ struct BufferTexture
   }
 };
 
-/// Appends the grid of level n: points (i, j, copy), triangles in tc::gridVertexIndex order, as
-/// tc::rebuildMesh orders them, counter-clockwise; the first point gets index `base`.
-void AppendGrid(int32_t n, int32_t copy, vtkIdType base, vtkPoints* points, vtkCellArray* polys)
-{
-  const int32_t big = 1 << n;
-  for (int32_t j = 0; j <= big; ++j)
-  {
-    for (int32_t i = 0; i + j <= big; ++i)
-    {
-      points->InsertNextPoint(i, j, copy);
-    }
-  }
-  for (int32_t j = 0; j < big; ++j)
-  {
-    for (int32_t i = 0; i + j < big; ++i)
-    {
-      const vtkIdType a = base + tc::gridVertexIndex(n, i, j);
-      const vtkIdType b = base + tc::gridVertexIndex(n, i + 1, j);
-      const vtkIdType c = base + tc::gridVertexIndex(n, i, j + 1);
-      const vtkIdType tri0[3] = { a, b, c };
-      polys->InsertNextCell(3, tri0);
-      if (i + j + 1 < big)
-      {
-        const vtkIdType d = base + tc::gridVertexIndex(n, i + 1, j + 1);
-        const vtkIdType tri1[3] = { b, d, c };
-        polys->InsertNextCell(3, tri1);
-      }
-    }
-  }
-}
-
 /// The shader replacements of shaders/ (STYLE.md 7), as (vertex?, tag, replace first, text).
 struct Replacement
 {
@@ -183,7 +146,16 @@ void InstallReplacements(vtkActor* actor)
     }
   }
 }
+
+/// The shader's samplers of the buffer textures, in the order of Internals::textures().
+const std::array<const char*, 7> kTextureUniforms{ "tcPositions", "tcNormals", "tcOrigins",
+  "tcCharts", "tcDrawList", "tcInstances", "tcColors" };
+
+/// Row-major 4 x 4 identity: the one instance drawn without SetInstanceMatrices.
+const std::vector<double> kIdentity{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
 } // namespace
+
+using namespace tcvtk::lod;
 
 /// The OpenGL side: a polydata mapper whose input is the grids of every level, drawing them
 /// instanced per level with the owner's buffer textures bound. Being a vtkOpenGLPolyDataMapper it
@@ -205,6 +177,12 @@ protected:
   }
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   void UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+
+private:
+  int UploadColorTable(std::array<double, 2>& range);
+  size_t BeginCapture(GLenum mode);
+  void DrawLevels(vtkShaderProgram* program, GLenum mode, size_t perTriangle);
+  void EndCapture(size_t vertices);
 };
 vtkStandardNewMacro(tcLODGridMapper);
 
@@ -223,7 +201,7 @@ struct tcLODMapper::Internals
   std::vector<int64_t> gridTriangleStart; // per level, + 1
   std::vector<int32_t> gridCopies;        // per level: charts one instance of the draw draws
 
-  std::vector<double> instances{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  std::vector<double> instances = kIdentity;
   vtkTimeStamp instanceTime;
   std::vector<int32_t> chartLevels; // empty: choose per view
   std::vector<int32_t> levels;      // instances x charts, the last frame's choice
@@ -233,9 +211,14 @@ struct tcLODMapper::Internals
   double drawListSeconds = 0.0;
 
   BufferTexture positions, normals, origins, chartTable, drawList, instanceRows, colors;
+  /// The buffer textures, in the order of kTextureUniforms.
+  std::array<BufferTexture*, 7> textures()
+  {
+    return { &positions, &normals, &origins, &chartTable, &drawList, &instanceRows, &colors };
+  }
   vtkTimeStamp uploadTime;
-  std::string uploadedAttribute;        // the ColorAttribute asked for at the last upload
-  bool attributeFound = false;          // and whether it is in the positions' fourth component
+  std::string uploadedAttribute; // the ColorAttribute asked for at the last upload
+  bool attributeFound = false;   // and whether it is in the positions' fourth component
   std::array<double, 2> attributeRange{ 0.0, 1.0 };
   vtkOpenGLRenderWindow* uploadWindow = nullptr;
 
@@ -255,8 +238,7 @@ tcLODMapper::tcLODMapper()
   this->Internal->gridMapper->SetInputData(this->Internal->grid);
   this->Internal->captured->SetNumberOfComponents(8);
   this->Internal->capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "tcCaptureVSOutput");
-  this->Internal->capture->AddVarying(
-    vtkTransformFeedback::Color_RGBA_F, "tcCaptureGridVSOutput");
+  this->Internal->capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "tcCaptureGridVSOutput");
   this->Internal->capture->SetPrimitiveMode(GL_TRIANGLES);
 }
 
@@ -325,15 +307,15 @@ void tcLODMapper::SetChartLevels(vtkIntArray* levels)
 
 void tcLODMapper::SetInstanceMatrices(vtkDataArray* matrices)
 {
-  std::vector<double> values{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  std::vector<double> values = kIdentity;
   if (matrices)
   {
     if (matrices->GetNumberOfComponents() != 16 || matrices->GetNumberOfTuples() < 1)
     {
       vtkErrorMacro("SetInstanceMatrices needs 16 components per tuple (a row-major 4 x 4 "
                     "matrix) and at least one tuple; got "
-        << matrices->GetNumberOfComponents() << " components and "
-        << matrices->GetNumberOfTuples() << " tuples. The instances are unchanged.");
+        << matrices->GetNumberOfComponents() << " components and " << matrices->GetNumberOfTuples()
+        << " tuples. The instances are unchanged.");
       return;
     }
     values.resize(static_cast<size_t>(16 * matrices->GetNumberOfTuples()));
@@ -401,14 +383,14 @@ void tcLODMapper::GetLevels(vtkIntArray* levels) const
   const int instances = this->GetNumberOfInstances();
   const size_t nc = in.atlas.charts.size();
   levels->SetNumberOfComponents(instances);
-  levels->SetNumberOfTuples(in.levels.size() == nc * static_cast<size_t>(instances)
-      ? static_cast<vtkIdType>(nc)
-      : 0);
+  levels->SetNumberOfTuples(
+    in.levels.size() == nc * static_cast<size_t>(instances) ? static_cast<vtkIdType>(nc) : 0);
   for (vtkIdType c = 0; c < levels->GetNumberOfTuples(); ++c)
   {
     for (int i = 0; i < instances; ++i)
     {
-      levels->SetTypedComponent(c, i, in.levels[static_cast<size_t>(i) * nc + static_cast<size_t>(c)]);
+      levels->SetTypedComponent(
+        c, i, in.levels[static_cast<size_t>(i) * nc + static_cast<size_t>(c)]);
     }
   }
 }
@@ -444,7 +426,6 @@ bool tcLODMapper::UpdateAtlas()
     vtkErrorMacro("Cannot draw the atlas: " << in.error << ".");
     return false;
   }
-  const int32_t finest = in.atlas.maxLevel();
   try
   {
     // Refuses levels above 15 (the draw list packs levels in 4 bits) and malformed errors.
@@ -457,41 +438,7 @@ bool tcLODMapper::UpdateAtlas()
     vtkErrorMacro("Cannot draw the atlas: " << e.what() << ".");
     return false;
   }
-
-  // The grids of every level, one vertex buffer.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  vtkNew<vtkCellArray> polys;
-  in.gridTriangleStart.assign(1, 0);
-  in.gridCopies.clear();
-  vtkIdType base = 0;
-  for (int32_t n = 0; n <= std::max(finest, 0); ++n)
-  {
-    const int32_t big = 1 << n;
-    // Instances of one or four triangles cost far more than their triangles (measured with
-    // Mesa's llvmpipe: 6.7 us per instance; GPUs also start few instances per clock), so the
-    // coarse grids are repeated: one instance draws kCopyTriangles / 4^n charts, copy k carrying
-    // k in its vertices' third coordinate.
-    constexpr int32_t kCopyTriangles = 64;
-    const int32_t copies = std::max(1, kCopyTriangles >> (2 * n));
-    in.gridCopies.push_back(copies);
-    for (int32_t k = 0; k < copies; ++k)
-    {
-      AppendGrid(n, k, base, points, polys);
-      base += tc::gridVertexCount(n);
-    }
-    in.gridTriangleStart.push_back(in.gridTriangleStart.back() + int64_t(copies) * big * big);
-  }
-  // Normals only so that VTK declares and lights them; the shader reads the normal image.
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(points->GetNumberOfPoints());
-  normals->FillValue(0.0f);
-  in.grid->Initialize();
-  in.grid->SetPoints(points);
-  in.grid->SetPolys(polys);
-  in.grid->GetPointData()->SetNormals(normals);
+  BuildGrids(in.atlas.maxLevel(), in.grid, in.gridTriangleStart, in.gridCopies);
   return true;
 }
 
@@ -507,116 +454,23 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   }
   const tc::Atlas& atlas = in.atlas;
   // The attribute to colour by rides in the fourth component of the positions.
-  int attribute = -1;
-  for (size_t a = 2; a < atlas.attributes.size(); ++a)
-  {
-    if (atlas.attributes[a].name == attributeName)
-    {
-      attribute = static_cast<int>(a);
-    }
-  }
+  const int attribute = FindAttribute(atlas, attributeName);
   if (!attributeName.empty() && attribute < 0)
   {
-    std::string names;
-    for (size_t a = 2; a < atlas.attributes.size(); ++a)
-    {
-      names += (names.empty() ? "" : ", ") + atlas.attributes[a].name;
-    }
     vtkErrorMacro("ColorAttribute '" << attributeName << "' is not an attribute of the atlas ("
-                                     << (names.empty() ? "it has none besides Position and Normal"
-                                                       : "it has " + names)
-                                     << "); the actor's colour is used.");
+                                     << OtherAttributes(atlas) << "); the actor's colour is used.");
   }
-  in.attributeRange = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  // Every image, one after another, 4 floats per texel (position, then normal).
-  std::vector<int64_t> imageBase;
-  int64_t texels = 0;
-  for (const tc::AtlasImage& image : atlas.images)
-  {
-    imageBase.push_back(texels);
-    texels += int64_t(image.width) * image.height;
-  }
-  std::vector<float> position(static_cast<size_t>(4 * texels), 0.0f);
-  std::vector<float> normal(static_cast<size_t>(4 * texels), 0.0f);
-  for (size_t k = 0; k < atlas.images.size(); ++k)
-  {
-    const tc::AtlasImage& image = atlas.images[k];
-    const int64_t count = int64_t(image.width) * image.height;
-    for (int64_t t = 0; t < count; ++t)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        position[static_cast<size_t>(4 * (imageBase[k] + t) + c)] =
-          image.data[0][static_cast<size_t>(3 * t + c)];
-        normal[static_cast<size_t>(4 * (imageBase[k] + t) + c)] =
-          image.data[1][static_cast<size_t>(3 * t + c)];
-      }
-      if (attribute >= 0)
-      {
-        const int comps = atlas.attributes[static_cast<size_t>(attribute)].components;
-        const float* v = image.data[static_cast<size_t>(attribute)].data() + comps * t;
-        double value = comps == 1 ? v[0] : 0.0;
-        if (comps > 1)
-        {
-          for (int c = 0; c < comps; ++c)
-          {
-            value += double(v[c]) * v[c];
-          }
-          value = std::sqrt(value);
-        }
-        position[static_cast<size_t>(4 * (imageBase[k] + t) + 3)] = static_cast<float>(value);
-      }
-    }
-  }
-  // tc::atlasTexel as one linear index and a signed row stride per (chart, image).
+  const AtlasTexels texels = PackTexels(atlas, attribute);
   std::vector<int32_t> origins;
   std::vector<int32_t> charts;
-  for (const tc::AtlasChart& chart : atlas.charts)
-  {
-    charts.insert(
-      charts.end(), { static_cast<int32_t>(origins.size() / 4), chart.maxLevel, 0, 0 });
-    for (int32_t k = 0; k <= chart.maxLevel; ++k)
-    {
-      const auto& o = chart.origin[static_cast<size_t>(k)];
-      const int32_t width = atlas.images[static_cast<size_t>(k)].width;
-      const int64_t linear = imageBase[static_cast<size_t>(k)] + int64_t(o[1]) * width + o[0];
-      origins.insert(origins.end(),
-        { static_cast<int32_t>(linear), chart.rotated ? -width : width, 0, 0 });
-    }
-  }
-  std::vector<float> rows;
-  for (size_t m = 0; m < in.instances.size(); m += 16)
-  {
-    for (size_t e = 0; e < 12; ++e)
-    {
-      rows.push_back(static_cast<float>(in.instances[m + e]));
-    }
-  }
-  in.positions.Upload(position, false);
-  in.normals.Upload(normal, false);
+  PackChartTable(atlas, texels.imageBase, origins, charts);
+  in.positions.Upload(texels.position, false);
+  in.normals.Upload(texels.normal, false);
   in.origins.Upload(origins, true);
   in.chartTable.Upload(charts, true);
-  in.instanceRows.Upload(rows, false);
-  // The range over the samples charts use (texels between charts hold 0).
-  if (attribute >= 0)
-  {
-    for (size_t c = 0; c < atlas.charts.size(); ++c)
-    {
-      const int32_t n = atlas.charts[c].maxLevel;
-      for (int32_t j = 0; j <= (1 << n); ++j)
-      {
-        for (int32_t i = 0; i + j <= (1 << n); ++i)
-        {
-          // A chart's finest level lies in image 0.
-          const auto xy = tc::atlasTexel(atlas.charts[c], n, i, j);
-          const float value = position[static_cast<size_t>(
-            4 * (int64_t(xy[1]) * atlas.images[0].width + xy[0]) + 3)];
-          in.attributeRange[0] = std::min(in.attributeRange[0], double(value));
-          in.attributeRange[1] = std::max(in.attributeRange[1], double(value));
-        }
-      }
-    }
-  }
+  in.instanceRows.Upload(InstanceRows(in.instances), false);
+  in.attributeRange = attribute >= 0 ? AttributeRange(atlas, texels.position)
+                                     : std::array<double, 2>{ VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   in.uploadedAttribute = attributeName;
   in.attributeFound = attribute >= 0;
   in.uploadWindow = window;
@@ -641,46 +495,15 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
       vtkErrorMacro("ChartLevels has " << in.chartLevels.size() << " values but the atlas has "
                                        << nc << " charts; drawing every chart at its finest.");
     }
-    for (size_t c = 0; c < nc; ++c)
-    {
-      const int32_t finest = in.atlas.charts[c].maxLevel;
-      int32_t level = in.chartLevels.size() == nc ? in.chartLevels[c]
-        : this->FixedLevel >= 0                   ? this->FixedLevel
-                                                  : finest;
-      level = level < 0 ? -1 : std::min(level, finest);
-      for (int i = 0; i < instances; ++i)
-      {
-        in.levels[static_cast<size_t>(i) * nc + c] = level;
-      }
-    }
+    FixedLevels(in.atlas, in.chartLevels, this->FixedLevel, instances, in.levels);
   }
   else
   {
-    int width = 0, height = 0;
-    ren->GetTiledSize(&width, &height);
-    vtkMatrix4x4* worldToClip = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-      ren->GetTiledAspectRatio(), -1, 1);
-    vtkNew<vtkMatrix4x4> modelToClip;
-    vtkMatrix4x4::Multiply4x4(worldToClip, act->GetMatrix(), modelToClip);
     tc::LodOptions options;
     options.bias = this->LODBias;
     options.errorPixels = this->ErrorTarget;
     options.cull = this->Culling;
-    const double* toClip = modelToClip->GetData();
-    // Instances in parallel: a crowd has many of them, each with a few hundred charts.
-    tc::parallel_for(
-      instances,
-      [&](int64_t i)
-      {
-        tc::LodView view;
-        view.width = std::max(1, width);
-        view.height = std::max(1, height);
-        vtkMatrix4x4::Multiply4x4(
-          toClip, in.instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
-        tc::selectLevels(
-          in.charts, view, options, in.levels.data() + static_cast<size_t>(i) * nc);
-      },
-      tc::Progress(), 1);
+    ViewLevels(ren, act, in.charts, in.instances, options, nc, in.levels);
   }
   const auto selected = std::chrono::steady_clock::now();
   // The levels above are clamped to each chart's range, which is all buildDrawList checks.
@@ -735,35 +558,12 @@ void tcLODGridMapper::UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, v
   this->SetLightingShaderParameters(cellBO, ren, act);
 }
 
-void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+int tcLODGridMapper::UploadColorTable(std::array<double, 2>& range)
 {
   tcLODMapper::Internals& in = *this->Owner->Internal;
   tcLODMapper* owner = this->Owner;
-  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
-  const int64_t gridTriangles = in.gridTriangleStart.back();
-  if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty())
-  {
-    return;
-  }
-  // Surface: 3 indices per grid triangle; wireframe: 6 (its three edges); points: 3.
-  const size_t perTriangle = tris.IBO->IndexCount / static_cast<size_t>(gridTriangles);
-  if (perTriangle * static_cast<size_t>(gridTriangles) != tris.IBO->IndexCount)
-  {
-    vtkErrorMacro("Unexpected index buffer for the grids (" << tris.IBO->IndexCount
-                                                            << " indices); nothing drawn.");
-    return;
-  }
-  const GLenum mode =
-    static_cast<GLenum>(this->GetOpenGLMode(act->GetProperty()->GetRepresentation(), PrimitiveTris));
-  this->UpdateShaders(tris, ren, act);
-  vtkShaderProgram* program = tris.Program;
-  if (!program)
-  {
-    return;
-  }
-  // Colour by attribute: the lookup table as 256 colours over the range.
   int colorMode = owner->ColorMode;
-  std::array<double, 2> range = in.attributeRange;
+  range = in.attributeRange;
   if (colorMode == tcLODMapper::ColorByAttribute)
   {
     if (!in.attributeFound)
@@ -789,35 +589,29 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     in.colors.Upload(std::vector<float>(4, 0.0f), false);
   }
-  BufferTexture* textures[] = { &in.positions, &in.normals, &in.origins, &in.chartTable,
-    &in.drawList, &in.instanceRows, &in.colors };
-  const char* names[] = { "tcPositions", "tcNormals", "tcOrigins", "tcCharts", "tcDrawList",
-    "tcInstances", "tcColors" };
-  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  for (size_t t = 0; t < 7; ++t)
-  {
-    program->SetUniformi(names[t], textures[t]->Activate(window));
-  }
-  program->SetUniformi("tcStitching", owner->Stitching ? 1 : 0);
-  program->SetUniformi("tcColorMode", colorMode);
-  const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
-  program->SetUniform2f("tcRange", rangeValues);
+  return colorMode;
+}
 
-  size_t capturedVertices = 0;
-  if (owner->CaptureVertices)
+size_t tcLODGridMapper::BeginCapture(GLenum mode)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  size_t vertices = 0;
+  for (size_t n = 0; n + 1 < in.list.levelStart.size() && n < in.gridCopies.size(); ++n)
   {
-    for (size_t n = 0; n + 1 < in.list.levelStart.size() && n < in.gridCopies.size(); ++n)
-    {
-      const int64_t count = in.list.levelStart[n + 1] - in.list.levelStart[n];
-      const int64_t draws = (count + in.gridCopies[n] - 1) / in.gridCopies[n];
-      capturedVertices += static_cast<size_t>(draws) * 3 *
-        static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
-    }
-    in.capture->SetNumberOfVertices(capturedVertices);
-    in.capture->SetPrimitiveMode(mode == GL_TRIANGLES ? GL_TRIANGLES : GL_POINTS);
-    in.capture->BindBuffer();
+    const int64_t count = in.list.levelStart[n + 1] - in.list.levelStart[n];
+    const int64_t draws = (count + in.gridCopies[n] - 1) / in.gridCopies[n];
+    vertices += static_cast<size_t>(draws) * 3 *
+      static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
   }
-  tris.IBO->Bind();
+  in.capture->SetNumberOfVertices(vertices);
+  in.capture->SetPrimitiveMode(mode == GL_TRIANGLES ? GL_TRIANGLES : GL_POINTS);
+  in.capture->BindBuffer();
+  return vertices;
+}
+
+void tcLODGridMapper::DrawLevels(vtkShaderProgram* program, GLenum mode, size_t perTriangle)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
   const size_t levels = std::min(in.list.levelStart.size(), in.gridTriangleStart.size()) - 1;
   for (size_t n = 0; n < levels; ++n)
   {
@@ -839,17 +633,70 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
       reinterpret_cast<const GLvoid*>(offset * sizeof(GLuint)),
       static_cast<GLsizei>((count + copies - 1) / copies));
   }
+}
+
+void tcLODGridMapper::EndCapture(size_t vertices)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  in.capture->ReadBuffer();
+  const auto* data = static_cast<const float*>(in.capture->GetBufferData());
+  in.captured->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
+  if (data)
+  {
+    std::copy(data, data + 8 * vertices, in.captured->GetPointer(0));
+  }
+  in.capture->ReleaseBufferData();
+}
+
+void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  tcLODMapper* owner = this->Owner;
+  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+  const int64_t gridTriangles = in.gridTriangleStart.back();
+  if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty())
+  {
+    return;
+  }
+  // Surface: 3 indices per grid triangle; wireframe: 6 (its three edges); points: 3.
+  const size_t perTriangle = tris.IBO->IndexCount / static_cast<size_t>(gridTriangles);
+  if (perTriangle * static_cast<size_t>(gridTriangles) != tris.IBO->IndexCount)
+  {
+    vtkErrorMacro("Unexpected index buffer for the grids (" << tris.IBO->IndexCount
+                                                            << " indices); nothing drawn.");
+    return;
+  }
+  const GLenum mode = static_cast<GLenum>(
+    this->GetOpenGLMode(act->GetProperty()->GetRepresentation(), PrimitiveTris));
+  this->UpdateShaders(tris, ren, act);
+  vtkShaderProgram* program = tris.Program;
+  if (!program)
+  {
+    return;
+  }
+
+  // The colour table, the buffer textures and the uniforms every level shares.
+  std::array<double, 2> range;
+  const int colorMode = this->UploadColorTable(range);
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const std::array<BufferTexture*, 7> textures = in.textures();
+  for (size_t t = 0; t < textures.size(); ++t)
+  {
+    program->SetUniformi(kTextureUniforms[t], textures[t]->Activate(window));
+  }
+  program->SetUniformi("tcStitching", owner->Stitching ? 1 : 0);
+  program->SetUniformi("tcColorMode", colorMode);
+  const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
+  program->SetUniform2f("tcRange", rangeValues);
+
+  // One instanced draw per level, read back by transform feedback when asked.
+  const size_t captured = owner->CaptureVertices ? this->BeginCapture(mode) : 0;
+  tris.IBO->Bind();
+  this->DrawLevels(program, mode, perTriangle);
   tris.IBO->Release();
   if (owner->CaptureVertices)
   {
-    in.capture->ReadBuffer();
-    const auto* data = static_cast<const float*>(in.capture->GetBufferData());
-    in.captured->SetNumberOfTuples(static_cast<vtkIdType>(capturedVertices));
-    if (data)
-    {
-      std::copy(data, data + 8 * capturedVertices, in.captured->GetPointer(0));
-    }
-    in.capture->ReleaseBufferData();
+    this->EndCapture(captured);
   }
   for (BufferTexture* texture : textures)
   {
@@ -871,30 +718,9 @@ double* tcLODMapper::GetBounds()
       VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
     for (size_t m = 0; m < in.instances.size(); m += 16)
     {
-      const double* t = in.instances.data() + m;
       for (const tc::AtlasChart& chart : in.atlas.charts)
       {
-        const double* c0 = chart.box.data();
-        for (int corner = 0; corner < 8; ++corner)
-        {
-          double p[3] = { c0[0], c0[1], c0[2] };
-          for (int k = 0; k < 3; ++k)
-          {
-            if (corner & (1 << k))
-            {
-              for (int x = 0; x < 3; ++x)
-              {
-                p[x] += chart.box[static_cast<size_t>(3 + 3 * k + x)] - c0[x];
-              }
-            }
-          }
-          for (int r = 0; r < 3; ++r)
-          {
-            const double v = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
-            b[2 * r] = std::min(b[2 * r], v);
-            b[2 * r + 1] = std::max(b[2 * r + 1], v);
-          }
-        }
+        AddBoxBounds(chart, in.instances.data() + m, b);
       }
     }
     std::copy(b, b + 6, in.bounds);
@@ -907,8 +733,7 @@ double* tcLODMapper::GetBounds()
 void tcLODMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& in = *this->Internal;
-  for (BufferTexture* texture : { &in.positions, &in.normals, &in.origins, &in.chartTable,
-         &in.drawList, &in.instanceRows, &in.colors })
+  for (BufferTexture* texture : in.textures())
   {
     texture->Release();
   }

@@ -36,6 +36,8 @@
 
 #include "TriChartRenderingModule.h"
 
+#include "tc/gim/lod_selection.h" // for the defaults of the properties
+
 #include <vtkMapper.h>
 
 #include <memory>
@@ -175,10 +177,10 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  double LODBias = 0.0;
-  double ErrorTarget = 0.0;
+  double LODBias = tc::LodOptions{}.bias;
+  double ErrorTarget = tc::LodOptions{}.errorPixels;
   bool FreezeLOD = false;
-  bool Culling = true;
+  bool Culling = tc::LodOptions{}.cull;
   bool Stitching = true;
   int FixedLevel = -1;
   int ColorMode = ColorByActor;

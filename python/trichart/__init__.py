@@ -2,7 +2,9 @@
 
 The filters are VTK algorithms (tcMeshReader, tcMeshPreparation, tcCurvature, ...); the
 helpers in :mod:`trichart.pipeline` chain them, :mod:`trichart.render` draws a stage, and
-``python3 -m trichart`` (the ``trichart`` command) runs them from the shell.
+``python3 -m trichart`` (the ``trichart`` command) runs them from the shell. The names of the
+arrays the stages write are those of the C++ filters, read from ``tcArrayNames``
+(``trichart.tcArrayNames.MeanCurvature()``), never retyped.
 """
 import os as _os
 

@@ -67,34 +67,38 @@ def cmd_info(_args):
 
 def _finest_level(atlas):
     """The largest d_max over the charts of an atlas multiblock."""
-    levels = atlas.GetBlock(0).GetColumnByName("MaxLevel")
+    from .TriChartIO import tcArrayNames
+
+    levels = atlas.GetBlock(0).GetColumnByName(tcArrayNames.MaxLevel())
     return max(levels.GetValue(c) for c in range(levels.GetNumberOfTuples()))
 
 
-def cmd_build(args):
-    from .pipeline import build
+def _build_options(args):
+    """pipeline.build's keyword options from the command line of `trichart build`."""
+    return {"stages": args.stages, "image": not args.no_image,
+            "cluster_options": {"number_of_clusters": args.clusters},
+            "feature_options": {"crease_angle": args.crease_angle},
+            "base_options": {"target_faces": args.base_faces, "max_error": args.max_error},
+            "geometry_options": {"max_level": args.max_level, "sample_budget": args.budget,
+                                 "stretch_iterations": args.stretch_iterations,
+                                 "fit_samples": not args.no_fit},
+            "prepare_options": _repair_options(args)}
 
-    bar = None if args.quiet else ProgressBar()
-    start = time.perf_counter()
-    options = {"max_level": args.max_level, "sample_budget": args.budget,
-               "stretch_iterations": args.stretch_iterations,
-               "fit_samples": not args.no_fit}
-    try:
-        result = build(args.mesh, args.output, stages=args.stages, progress=bar,
-                       image=not args.no_image,
-                       cluster_options={"number_of_clusters": args.clusters},
-                       feature_options={"crease_angle": args.crease_angle},
-                       base_options={"target_faces": args.base_faces,
-                                     "max_error": args.max_error},
-                       geometry_options=options,
-                       prepare_options={"fill_holes": args.fill_holes,
-                                        "max_hole_edges": args.max_hole_edges,
-                                        "split_non_manifold": args.split_non_manifold,
-                                        "remove_slivers": args.remove_slivers})
-    finally:
-        if bar:
-            bar.close()
-    seconds = time.perf_counter() - start
+
+def _scene_lines(mesh):
+    """What a scene file held beyond its surfaces (bones, animations): the lines of the reader's
+    report (field array ReaderReport, a line per value) after the file and the counts, other
+    than the array lines."""
+    from .TriChartIO import tcArrayNames
+
+    field = mesh.GetFieldData().GetAbstractArray(tcArrayNames.ReaderReport())
+    lines = [field.GetValue(i) for i in range(field.GetNumberOfValues())][2:] if field else []
+    return [line for line in lines if not line.startswith(("point array", "cell array"))]
+
+
+def _print_build_summary(args, result, seconds):
+    """The counts of every stage, the seconds per stage, the atlas size, what was read and
+    repaired, and the files written."""
     surface = result["surface"]
     charts = result["atlas"].GetBlock(0)
     finest = _finest_level(result["atlas"])
@@ -111,15 +115,25 @@ def cmd_build(args):
           f"input triangle")
     if result["retried"]:
         print(f"  note: {result['retried']}")
-    # What a scene file held beyond its surfaces (bones, animations), from the reader's report.
-    field = result["mesh"].GetFieldData().GetAbstractArray("ReaderReport")  # a line per value
-    for line in [field.GetValue(i) for i in range(field.GetNumberOfValues())][2:] if field else []:
-        if not line.startswith(("point array", "cell array")):
-            print(f"  read: {line}")
+    for line in _scene_lines(result["mesh"]):
+        print(f"  read: {line}")
     for line in result["report"].splitlines():
         print(f"  prepared: {line}")
     for name, path in result["files"].items():
         print(f"  wrote {name}: {path}")
+
+
+def cmd_build(args):
+    from .pipeline import build
+
+    bar = None if args.quiet else ProgressBar()
+    start = time.perf_counter()
+    try:
+        result = build(args.mesh, args.output, progress=bar, **_build_options(args))
+    finally:
+        if bar:
+            bar.close()
+    _print_build_summary(args, result, time.perf_counter() - start)
     return 0
 
 
@@ -158,37 +172,58 @@ def cmd_prepare(args):
     from .pipeline import prepare, read_mesh, write_vtp
 
     clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
-                            split_non_manifold=args.split_non_manifold,
-                            fill_holes=args.fill_holes,
-                            max_hole_edges=args.max_hole_edges,
-                            remove_slivers=args.remove_slivers)
+                            **_repair_options(args))
     print(report.strip() or "nothing to change")
     print(f"wrote {write_vtp(clean, args.output)}")
     return 0
 
 
-def _add_repair_options(parser):
+def _repair_options(args):
+    """The preparation's repairs from the command line, shared by build and prepare."""
+    return {"fill_holes": args.fill_holes, "max_hole_edges": args.max_hole_edges,
+            "split_non_manifold": args.split_non_manifold, "remove_slivers": args.remove_slivers}
+
+
+class _Defaults:
+    """The filters whose property defaults and ranges the options take (one home for each)."""
+
+    def __init__(self):
+        from .TriChartBaseComplex import tcBaseComplex
+        from .TriChartFeatures import tcFeatureRefinement, tcSpectralClustering
+        from .TriChartGeometryImages import (tcGeometryImageMesh, tcGeometryImages,
+                                             tcSurfaceDistance)
+        from .TriChartPreparation import tcMeshPreparation
+
+        self.preparation = tcMeshPreparation()
+        self.clusters = tcSpectralClustering()
+        self.features = tcFeatureRefinement()
+        self.base = tcBaseComplex()
+        self.images = tcGeometryImages()
+        self.rebuild = tcGeometryImageMesh()
+        self.distance = tcSurfaceDistance()
+
+
+def _add_repair_options(parser, d):
     """The preparation's repairs, shared by build and prepare."""
+    prep = d.preparation
     parser.add_argument("--split-non-manifold", action="store_true",
                         help="split non-manifold edges and vertices in the preparation")
     parser.add_argument("--fill-holes", action="store_true",
                         help="close the mesh's holes (up to --max-hole-edges boundary edges "
                              "each) with faired patches: the pipeline needs closed surfaces, "
                              "scans often are not")
-    parser.add_argument("--max-hole-edges", type=int, default=1000,
-                        help="largest hole --fill-holes closes, in boundary edges (default "
-                             "1000; 0: any size)")
+    parser.add_argument("--max-hole-edges", type=int, default=prep.GetMaxHoleEdges(),
+                        help=f"largest hole --fill-holes closes, in boundary edges (default "
+                             f"{prep.GetMaxHoleEdges()}; 0: any size)")
     parser.add_argument("--remove-slivers", action="store_true",
-                        help="collapse needles and flip caps (angles over 170 degrees, sides 10 "
-                             "times the shortest) in the preparation: scans often have "
-                             "thousands, through which the base edges cannot be traced")
+                        help=f"collapse needles and flip caps (angles over "
+                             f"{prep.GetSliverAngle():g} degrees, sides "
+                             f"{prep.GetSliverEdgeRatio():g} times the shortest) in the "
+                             "preparation: scans often have thousands, through which the base "
+                             "edges cannot be traced")
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(
-        prog="trichart", description="TriChart: triangle-chart geometry images and LOD.")
-    sub = parser.add_subparsers(dest="command", required=True)
-    sub.add_parser("info", help="versions, build type and the ParaView plugin path")
+def _add_build_parser(sub, d):
     p = sub.add_parser("build", help="run the whole static pipeline and write the atlas")
     p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), or a "
                                 "scene (.glb, .gltf, .fbx, .x, .md2) whose "
@@ -196,59 +231,92 @@ def main(argv=None):
     p.add_argument("-o", "--output", required=True, help="atlas file to write (.exr)")
     p.add_argument("--stages", metavar="DIR",
                    help="also write every stage as VTP (and pictures) into this folder")
-    p.add_argument("--clusters", type=int, default=16,
-                   help="number of spectral clusters (default 16)")
-    p.add_argument("--crease-angle", type=float, default=30.0,
-                   help="dihedral angle in degrees of a crease, which straightened feature "
-                        "lines keep (default 30; organic meshes simplify further with 60)")
-    p.add_argument("--base-faces", type=int, default=100,
-                   help="target number of base-complex triangles (default 100)")
-    p.add_argument("--max-error", type=float, default=1e-4,
+    p.add_argument("--clusters", type=int, default=d.clusters.GetNumberOfClusters(),
+                   help=f"number of spectral clusters (default "
+                        f"{d.clusters.GetNumberOfClusters()})")
+    p.add_argument("--crease-angle", type=float, default=d.features.GetCreaseAngle(),
+                   help=f"dihedral angle in degrees of a crease, which straightened feature "
+                        f"lines keep (default {d.features.GetCreaseAngle():g}; organic meshes "
+                        f"simplify further with 60)")
+    p.add_argument("--base-faces", type=int, default=d.base.GetTargetFaces(),
+                   help=f"target number of base-complex triangles (default "
+                        f"{d.base.GetTargetFaces()})")
+    p.add_argument("--max-error", type=float, default=d.base.GetMaxError(),
                    help="largest quadric error of a base-complex collapse, as a fraction of "
                         "the squared diagonal (default 1e-4, about 1%% of the diagonal RMS; "
                         "0: only --base-faces decides)")
-    p.add_argument("--max-level", type=int, default=8,
-                   help="largest chart level, 2^d + 1 samples per side (default 8)")
-    p.add_argument("--budget", type=int, default=0,
+    p.add_argument("--max-level", type=int, default=d.images.GetMaxLevel(),
+                   help=f"largest chart level, 2^d + 1 samples per side (default "
+                        f"{d.images.GetMaxLevel()})")
+    p.add_argument("--budget", type=int, default=d.images.GetSampleBudget(),
                    help="total samples at the finest levels (default: the mesh's point count)")
-    _add_repair_options(p)
-    p.add_argument("--stretch-iterations", type=int, default=10,
-                   help="stretch-reducing passes over each chart's mean-value map, 0 .. 100 "
-                        "(default 10; 0: the mean-value map alone)")
+    _add_repair_options(p, d)
+    p.add_argument("--stretch-iterations", type=int, default=d.images.GetStretchIterations(),
+                   help=f"stretch-reducing passes over each chart's mean-value map, "
+                        f"{d.images.GetStretchIterationsMinValue()} .. "
+                        f"{d.images.GetStretchIterationsMaxValue()} (default "
+                        f"{d.images.GetStretchIterations()}; 0: the mean-value map alone)")
     p.add_argument("--no-fit", action="store_true",
                    help="interpolate the surface at the finest samples instead of fitting "
                         "them to it by least squares")
     p.add_argument("--no-image", action="store_true", help="no pictures with --stages")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+
+
+def _parser(d):
+    """The command line: info, build, mesh, eval and prepare, with the filters' defaults."""
+    parser = argparse.ArgumentParser(
+        prog="trichart", description="TriChart: triangle-chart geometry images and LOD.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("info", help="versions, build type and the ParaView plugin path")
+    _add_build_parser(sub, d)
     p = sub.add_parser("mesh", help="rebuild a mesh from an atlas at one level")
     p.add_argument("atlas", help="atlas file (.exr)")
-    p.add_argument("--level", type=int, default=-1,
-                   help="level of every chart, capped by its finest (default -1: finest)")
+    p.add_argument("--level", type=int, default=d.rebuild.GetLevel(),
+                   help=f"level of every chart, capped by its finest (default "
+                        f"{d.rebuild.GetLevel()}: finest)")
     p.add_argument("-o", "--output", required=True, help="output .vtp file")
     p = sub.add_parser("eval", help="error of every level of an atlas against a mesh")
     p.add_argument("mesh", help="the original mesh")
     p.add_argument("atlas", help="atlas file (.exr)")
-    p.add_argument("--samples", type=int, default=0,
+    p.add_argument("--samples", type=int, default=d.distance.GetSamplesPerMesh(),
                    help="samples per surface (default: chosen from the triangle counts)")
     p = sub.add_parser("prepare", help="clean a mesh and write it as VTP")
     p.add_argument("mesh")
     p.add_argument("-o", "--output", required=True, help="output .vtp file")
-    p.add_argument("--merge-tolerance", type=float, default=0.0,
+    p.add_argument("--merge-tolerance", type=float, default=d.preparation.GetMergeTolerance(),
                    help="merge points closer than this fraction of the diagonal")
-    _add_repair_options(p)
-    args = parser.parse_args(argv)
+    _add_repair_options(p, d)
+    return parser
+
+
+def _check_args(parser, args, d):
+    """Refuses values out of the filters' ranges: the filters clamp them silently; a command
+    line says what is wrong instead."""
     if args.command == "build":
-        # The filters clamp these silently; a command line says what is wrong instead.
-        if not 0 <= args.stretch_iterations <= 100:
-            parser.error(f"--stretch-iterations must be 0 .. 100, not {args.stretch_iterations}")
-        if not 0.0 <= args.crease_angle <= 180.0:
-            parser.error(f"--crease-angle must be 0 .. 180 degrees, not {args.crease_angle}")
-        if not 0.0 <= args.max_error <= 1.0:
-            parser.error(f"--max-error must be 0 .. 1, not {args.max_error}")
+        images, features, base = d.images, d.features, d.base
+        low, high = images.GetStretchIterationsMinValue(), images.GetStretchIterationsMaxValue()
+        if not low <= args.stretch_iterations <= high:
+            parser.error(f"--stretch-iterations must be {low} .. {high}, not "
+                         f"{args.stretch_iterations}")
+        low, high = features.GetCreaseAngleMinValue(), features.GetCreaseAngleMaxValue()
+        if not low <= args.crease_angle <= high:
+            parser.error(f"--crease-angle must be {low:g} .. {high:g} degrees, not "
+                         f"{args.crease_angle}")
+        low, high = base.GetMaxErrorMinValue(), base.GetMaxErrorMaxValue()
+        if not low <= args.max_error <= high:
+            parser.error(f"--max-error must be {low:g} .. {high:g}, not {args.max_error}")
     if args.command in ("build", "prepare") and (args.max_hole_edges < 0 or
                                                  0 < args.max_hole_edges < 3):
         parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "
                      f"{args.max_hole_edges}")
+
+
+def main(argv=None):
+    defaults = _Defaults()
+    parser = _parser(defaults)
+    args = parser.parse_args(argv)
+    _check_args(parser, args, defaults)
 
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()

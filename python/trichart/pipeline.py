@@ -1,6 +1,7 @@
 """Chain the TriChart filters from Python, with errors as exceptions and progress callbacks."""
 import os
 import tempfile
+import time
 
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
@@ -86,24 +87,21 @@ def read_mesh(path, progress=None):
     return _output(reader)
 
 
-def prepare(mesh, merge_tolerance=0.0, split_non_manifold=False, orient=True, fill_holes=False,
-            max_hole_edges=1000, remove_slivers=False, sliver_angle=170.0,
-            sliver_edge_ratio=10.0, progress=None):
-    """tcMeshPreparation on `mesh`; returns (clean mesh, report text)."""
-    f = _prepared(mesh, progress, merge_tolerance=merge_tolerance,
-                  split_non_manifold=split_non_manifold, orient=orient, fill_holes=fill_holes,
-                  max_hole_edges=max_hole_edges, remove_slivers=remove_slivers,
-                  sliver_angle=sliver_angle, sliver_edge_ratio=sliver_edge_ratio)
+def prepare(mesh, progress=None, **options):
+    """tcMeshPreparation on `mesh`; returns (clean mesh, report text).
+
+    Options are the filter's properties in snake case, its defaults for those not given:
+    merge_tolerance, split_non_manifold, orient, fill_holes, max_hole_edges, remove_slivers,
+    sliver_angle, sliver_edge_ratio.
+    """
+    f = _prepared(mesh, progress, **options)
     return _output(f), f.GetReport()
 
 
 def _prepared(mesh, progress=None, **options):
     """tcMeshPreparation on `mesh` with `options` (prepare's, the filter's defaults for those not
     given), run; returns the filter (its output, report and counts)."""
-    f = _configure(TriChartPreparation.tcMeshPreparation(), options)
-    f.SetInputData(mesh)
-    run(f, "prepare", progress)
-    return f
+    return _run_on(TriChartPreparation.tcMeshPreparation(), mesh, "prepare", progress, options)
 
 
 def _closed_manifold_check(f):
@@ -125,15 +123,21 @@ def _configure(algorithm, options):
     return algorithm
 
 
+def _run_on(algorithm, data, label, progress, options):
+    """`algorithm` with `options` (snake case) on input `data`, run; returns the algorithm."""
+    _configure(algorithm, options)
+    algorithm.SetInputData(data)
+    run(algorithm, label, progress)
+    return algorithm
+
+
 def curvature(mesh, progress=None, **options):
     """tcCurvature on a triangle mesh; returns (mesh with curvature arrays, crest lines).
 
     Options are the filter's properties in snake case: min_neighbors, max_rings, degree,
     robust, robust_iterations, compute_crest_lines, crest_strength_threshold.
     """
-    f = _configure(TriChartCurvature.tcCurvature(), options)
-    f.SetInputData(mesh)
-    run(f, "curvature", progress)
+    f = _run_on(TriChartCurvature.tcCurvature(), mesh, "curvature", progress, options)
     return _output(f, 0), _output(f, 1)
 
 
@@ -143,9 +147,7 @@ def cluster(surface, progress=None, **options):
     Options: number_of_clusters, number_of_eigenvectors, crest_beta, extra_edge_factor,
     nystrom_threshold, nystrom_samples, k_means_restarts, seed.
     """
-    f = _configure(TriChartFeatures.tcSpectralClustering(), options)
-    f.SetInputData(surface)
-    run(f, "clusters", progress)
+    f = _run_on(TriChartFeatures.tcSpectralClustering(), surface, "clusters", progress, options)
     return _output(f, 0), _output(f, 1)
 
 
@@ -158,9 +160,7 @@ def refine_features(clusters, progress=None, **options):
     straighten_lines (straighten one-face zig-zags of the boundaries, default True),
     crease_angle (degrees; straightening never trades a crease edge for a smoother one).
     """
-    f = _configure(TriChartFeatures.tcFeatureRefinement(), options)
-    f.SetInputData(clusters)
-    run(f, "features", progress)
+    f = _run_on(TriChartFeatures.tcFeatureRefinement(), clusters, "features", progress, options)
     return _output(f, 0), _output(f, 1), _output(f, 2)
 
 
@@ -170,9 +170,7 @@ def base_complex(features, progress=None, **options):
 
     Options: target_faces, max_error.
     """
-    f = _configure(TriChartBaseComplex.tcBaseComplex(), options)
-    f.SetInputData(features)
-    run(f, "base", progress)
+    f = _run_on(TriChartBaseComplex.tcBaseComplex(), features, "base", progress, options)
     return _output(f, 0), _output(f, 1)
 
 
@@ -205,20 +203,20 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     curvature-weighted area, 1: by measured error, the default), stretch_iterations
     (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone).
     """
-    f = _configure(TriChartGeometryImages.tcGeometryImages(), options)
+    f = TriChartGeometryImages.tcGeometryImages()
     for name in resampled_arrays:
         f.AddResampledArray(name)
-    f.SetInputData(patches)
-    run(f, "images", progress)
-    return _multiblock(f)
+    return _multiblock(_run_on(f, patches, "images", progress, options))
 
 
-def rebuild(atlas, level=-1, chart_levels=None, progress=None):
-    """tcGeometryImageMesh: the mesh of `atlas` with every chart at `level` (-1: its finest),
-    or at chart_levels[c] for chart c, stitched without cracks."""
+def rebuild(atlas, level=None, chart_levels=None, progress=None):
+    """tcGeometryImageMesh: the mesh of `atlas` with every chart at `level` (-1: its finest;
+    None: the filter's default, its finest), or at chart_levels[c] for chart c, stitched
+    without cracks."""
     f = TriChartGeometryImages.tcGeometryImageMesh()
     f.SetInputData(atlas)
-    f.SetLevel(level)
+    if level is not None:
+        f.SetLevel(level)
     if chart_levels is not None:
         from vtkmodules.vtkCommonCore import vtkIntArray
 
@@ -289,6 +287,78 @@ def write_vtp(mesh, path):
     return path
 
 
+class _Stopwatch:
+    """Runs stage functions, recording the seconds of each by name (a stage run again keeps its
+    place in `seconds`)."""
+
+    def __init__(self):
+        self.seconds = {}
+
+    def __call__(self, name, function, *args, **kwargs):
+        start = time.perf_counter()
+        value = function(*args, **kwargs)
+        self.seconds[name] = time.perf_counter() - start
+        return value
+
+
+def _front(mesh, prepare_options, stage_options, progress, timed):
+    """The stages from the preparation to the path tracing; returns (their outputs by name, in
+    pipeline order, the preparation report)."""
+    prepared = timed("prepare", _prepared, mesh, progress=progress, **prepare_options)
+    # Fail here, not after curvature, clusters and features have run for minutes.
+    _closed_manifold_check(prepared)
+    clean, report = _output(prepared), prepared.GetReport()
+    surface, crest = timed("curvature", curvature, clean, progress=progress,
+                           **stage_options["curvature"])
+    clustered, boundaries = timed("clusters", cluster, surface, progress=progress,
+                                  **stage_options["cluster"])
+    features, lines, corners = timed("features", refine_features, clustered,
+                                     progress=progress, **stage_options["feature"])
+    base, parameterized = timed("base", base_complex, features, progress=progress,
+                                **stage_options["base"])
+    patches, paths = timed("paths", trace_paths, parameterized, progress=progress)
+    outputs = {"prepared": clean, "curvature": surface, "crest_lines": crest,
+               "clusters": clustered, "cluster_boundaries": boundaries, "features": features,
+               "feature_lines": lines, "corners": corners, "base_complex": base,
+               "parameterized": parameterized, "patches": patches, "paths": paths}
+    return outputs, report
+
+
+def _front_retrying_slivers(mesh, prepare_options, stage_options, progress, timed,
+                            retry_slivers):
+    """_front; when the paths cannot be traced and the preparation kept the slivers, again with
+    remove_slivers=True. Returns (outputs, report, what was retried or None)."""
+    options = dict(prepare_options or {})
+    try:
+        return _front(mesh, options, stage_options, progress, timed) + (None,)
+    except UntraceableError as error:
+        if not retry_slivers or options.get("remove_slivers"):
+            raise
+        retried = (f"the paths could not be traced ({error.reason}); built again "
+                   "with the slivers removed (--remove-slivers)")
+        options["remove_slivers"] = True
+        return _front(mesh, options, stage_options, progress, timed) + (retried,)
+
+
+def _write_stages(folder, outputs, image):
+    """Every output as `folder`/name.vtp (the folder exists) and, with `image`, pictures of curvature, features and
+    the base complex; returns the written paths by name."""
+    files = {name: write_vtp(data, os.path.join(folder, f"{name}.vtp"))
+             for name, data in outputs.items()}
+    if image:
+        from .render import render_base_complex, render_curvature, render_features
+
+        files["curvature_image"] = render_curvature(
+            outputs["curvature"], outputs["crest_lines"], os.path.join(folder, "curvature.png"))
+        files["features_image"] = render_features(
+            outputs["features"], outputs["feature_lines"], outputs["corners"],
+            os.path.join(folder, "features.png"))
+        files["base_complex_image"] = render_base_complex(
+            outputs["base_complex"], outputs["parameterized"],
+            os.path.join(folder, "base_complex.png"))
+    return files
+
+
 def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
           cluster_options=None, feature_options=None, base_options=None,
           geometry_options=None, prepare_options=None, retry_slivers=True):
@@ -309,69 +379,19 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     slivers are what makes the parameterization too thin to trace on scans and CAD meshes.
     The result's "retried" then says so (None otherwise).
     """
-    import time
-
-    seconds = {}
-
-    def timed(name, function, *args, **kwargs):
-        start = time.perf_counter()
-        value = function(*args, **kwargs)
-        seconds[name] = time.perf_counter() - start
-        return value
-
+    timed = _Stopwatch()
     mesh = timed("read", read_mesh, path, progress)
-
-    def front(options):
-        prepared = timed("prepare", _prepared, mesh, progress=progress, **options)
-        # Fail here, not after curvature, clusters and features have run for minutes.
-        _closed_manifold_check(prepared)
-        clean, report = _output(prepared), prepared.GetReport()
-        surface, crest = timed("curvature", curvature, clean, progress=progress,
-                               **(curvature_options or {}))
-        clustered, boundaries = timed("clusters", cluster, surface, progress=progress,
-                                      **(cluster_options or {}))
-        features, lines, corners = timed("features", refine_features, clustered,
-                                         progress=progress, **(feature_options or {}))
-        base, parameterized = timed("base", base_complex, features, progress=progress,
-                                    **(base_options or {}))
-        patches, paths = timed("paths", trace_paths, parameterized, progress=progress)
-        return (clean, report, surface, crest, clustered, boundaries, features, lines, corners,
-                base, parameterized, patches, paths)
-
-    options = dict(prepare_options or {})
-    retried = None
-    try:
-        stages_out = front(options)
-    except UntraceableError as error:
-        if not retry_slivers or options.get("remove_slivers"):
-            raise
-        retried = (f"the paths could not be traced ({error.reason}); built again "
-                   "with the slivers removed (--remove-slivers)")
-        options["remove_slivers"] = True
-        stages_out = front(options)
-    (clean, report, surface, crest, clustered, boundaries, features, lines, corners, base,
-     parameterized, patches, paths) = stages_out
-    atlas = timed("images", geometry_images, patches, progress=progress,
+    stage_options = {"curvature": curvature_options or {}, "cluster": cluster_options or {},
+                     "feature": feature_options or {}, "base": base_options or {}}
+    outputs, report, retried = _front_retrying_slivers(mesh, prepare_options, stage_options,
+                                                       progress, timed, retry_slivers)
+    atlas = timed("images", geometry_images, outputs["patches"], progress=progress,
                   **(geometry_options or {}))
     os.makedirs(os.path.dirname(os.path.abspath(str(atlas_path))), exist_ok=True)
     files = {"atlas": timed("write", write_atlas, atlas, atlas_path, progress)}
-    outputs = {"prepared": clean, "curvature": surface, "crest_lines": crest,
-               "clusters": clustered, "cluster_boundaries": boundaries, "features": features,
-               "feature_lines": lines, "corners": corners, "base_complex": base,
-               "parameterized": parameterized, "patches": patches, "paths": paths}
     if stages:
         os.makedirs(stages, exist_ok=True)
         outputs["rebuilt"] = rebuild(atlas, progress=progress)
-        files.update({name: write_vtp(data, os.path.join(stages, f"{name}.vtp"))
-                      for name, data in outputs.items()})
-        if image:
-            from .render import render_base_complex, render_curvature, render_features
-
-            files["curvature_image"] = render_curvature(
-                surface, crest, os.path.join(stages, "curvature.png"))
-            files["features_image"] = render_features(
-                features, lines, corners, os.path.join(stages, "features.png"))
-            files["base_complex_image"] = render_base_complex(
-                base, parameterized, os.path.join(stages, "base_complex.png"))
-    return dict(outputs, atlas=atlas, files=files, report=report, mesh=clean, surface=surface,
-                seconds=seconds, retried=retried)
+        files.update(_write_stages(stages, outputs, image))
+    return dict(outputs, atlas=atlas, files=files, report=report, mesh=outputs["prepared"],
+                surface=outputs["curvature"], seconds=timed.seconds, retried=retried)

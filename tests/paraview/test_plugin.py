@@ -12,6 +12,7 @@ from pvcheck import check, failures  # noqa: E402  (beside this script)
 
 
 LoadPlugin(plugin, remote=False, ns=globals())
+from trichart import tcArrayNames  # noqa: E402  (the array names, from the wrapped modules)
 # paraview.simple names the functions after the proxies' labels.
 for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
              "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex",
@@ -35,9 +36,11 @@ UpdatePipeline(proxy=curv)
 surface = servermanager.Fetch(curv)
 check(surface.GetNumberOfPoints() == 6475, "fandisk has 6475 points after preparation")
 check(surface.GetNumberOfPolys() == 12946, "fandisk has 12946 triangles after preparation")
-for array in ("PrincipalCurvatures", "PrincipalDirections", "MeanCurvature", "GaussianCurvature"):
+for array in (tcArrayNames.PrincipalCurvatures(), tcArrayNames.PrincipalDirections(),
+              tcArrayNames.MeanCurvature(), tcArrayNames.GaussianCurvature()):
     check(surface.GetPointData().GetArray(array) is not None, f"point array {array}")
-check(surface.GetCellData().GetArray("FaceMeanCurvature") is not None, "cell FaceMeanCurvature")
+check(surface.GetCellData().GetArray(tcArrayNames.FaceMeanCurvature()) is not None,
+      "cell FaceMeanCurvature")
 info = curv.GetDataInformation(1)
 check(info.GetNumberOfCells() > 0, "crest lines on output port 1")
 
@@ -53,7 +56,8 @@ check(features.BandFraction == 0.1 and features.CornerRings == 8
       and features.StraightenLines == 1 and features.CreaseAngle == 30.0, "refinement defaults")
 UpdatePipeline(proxy=features)
 clustered = servermanager.Fetch(clusters)
-check(clustered.GetCellData().GetArray("ClusterId").GetRange() == (0.0, 11.0), "12 clusters")
+check(clustered.GetCellData().GetArray(tcArrayNames.ClusterId()).GetRange() == (0.0, 11.0),
+      "12 clusters")
 check(features.GetDataInformation(1).GetNumberOfCells() > 0, "feature lines on port 1")
 check(features.GetDataInformation(2).GetNumberOfPoints() > 0, "corners on port 2")
 
@@ -74,14 +78,15 @@ check(TriChartGeometryImageMesh(Input=images).Level == -1, "rebuild default leve
 distance = TriChartSurfaceDistance(Input=rebuilt, Reference=prep)  # noqa: F821
 UpdatePipeline(proxy=distance)
 patches = servermanager.Fetch(paths)
-check(patches.GetCellData().GetArray("PatchId") is not None, "patches carry PatchId")
+check(patches.GetCellData().GetArray(tcArrayNames.PatchId()) is not None, "patches carry PatchId")
 check(paths.GetDataInformation(1).GetNumberOfCells() ==
       3 * base.GetDataInformation(0).GetNumberOfCells() // 2, "one path per base edge")
 mesh = servermanager.Fetch(distance)
-check(mesh.GetNumberOfPolys() > 0 and mesh.GetCellData().GetArray("ChartId") is not None,
+check(mesh.GetNumberOfPolys() > 0
+      and mesh.GetCellData().GetArray(tcArrayNames.ChartId()) is not None,
       "a mesh rebuilt from the atlas, with ChartId")
-check(mesh.GetPointData().GetArray("Distance") is not None, "point array Distance")
-hausdorff = mesh.GetFieldData().GetArray("RelativeHausdorff")
+check(mesh.GetPointData().GetArray(tcArrayNames.Distance()) is not None, "point array Distance")
+hausdorff = mesh.GetFieldData().GetArray(tcArrayNames.RelativeHausdorff())
 check(hausdorff is not None and 0 < hausdorff.GetValue(0) < 0.05,
       "level 2 of fandisk is within 5% of the diagonal")
 

@@ -24,6 +24,7 @@ def bunny_stages():
     """The static pipeline on the bundled bunny, every stage's output by name (the atlas
     resamples MeanCurvature)."""
     import trichart
+    from trichart import tcArrayNames
 
     data = pathlib.Path(os.environ.get("TRICHART_TESTING_DATA",
                                        pathlib.Path(__file__).parents[2] / "testing-data"))
@@ -33,5 +34,5 @@ def bunny_stages():
     features, _, _ = trichart.refine_features(clusters)
     base, parameterized = trichart.base_complex(features)
     patches, paths = trichart.trace_paths(parameterized)
-    atlas = trichart.geometry_images(patches, resampled_arrays=["MeanCurvature"])
+    atlas = trichart.geometry_images(patches, resampled_arrays=[tcArrayNames.MeanCurvature()])
     return {"clean": clean, "base": base, "patches": patches, "paths": paths, "atlas": atlas}

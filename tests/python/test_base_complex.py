@@ -3,6 +3,7 @@ stages, its target control, and a clear error for an open mesh."""
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 from trichart.pipeline import TriChartError
 
 
@@ -17,15 +18,15 @@ def features_of(path, clusters=12):
 def test_every_vertex_is_parameterized(testing_data):
     features = features_of(testing_data / "meshes" / "fandisk.off")
     base, parameterized = trichart.base_complex(features, target_faces=200)
-    faces = parameterized.GetPointData().GetArray("BaseFaceId")
-    bary = parameterized.GetPointData().GetArray("BaseBarycentric")
+    faces = parameterized.GetPointData().GetArray(tcArrayNames.BaseFaceId())
+    bary = parameterized.GetPointData().GetArray(tcArrayNames.BaseBarycentric())
     assert faces.GetNumberOfTuples() == features.GetNumberOfPoints()
     assert bary.GetNumberOfComponents() == 3
     n = base.GetNumberOfPolys()
     for v in range(faces.GetNumberOfTuples()):
         assert 0 <= faces.GetTuple1(v) < n
         assert sum(bary.GetTuple3(v)) == pytest.approx(1.0, abs=1e-9)
-    ids = base.GetPointData().GetArray("InputPointId")
+    ids = base.GetPointData().GetArray(tcArrayNames.InputPointId())
     assert ids.GetNumberOfTuples() == base.GetNumberOfPoints()
 
 

@@ -3,6 +3,7 @@ errors, and the feature outputs on the bundled fandisk."""
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 from trichart.pipeline import TriChartError
 
 
@@ -25,11 +26,11 @@ def values(array):
 def test_every_face_gets_a_cluster_and_runs_are_identical(fandisk_curvature):
     a, boundaries = trichart.cluster(fandisk_curvature, number_of_clusters=12)
     b, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12)
-    ids = values(a.GetCellData().GetArray("ClusterId"))
+    ids = values(a.GetCellData().GetArray(tcArrayNames.ClusterId()))
     assert len(ids) == fandisk_curvature.GetNumberOfPolys()
     assert set(ids) == set(range(12))
-    assert ids == values(b.GetCellData().GetArray("ClusterId"))
-    eigenvalues = values(a.GetFieldData().GetArray("Eigenvalues"))
+    assert ids == values(b.GetCellData().GetArray(tcArrayNames.ClusterId()))
+    eigenvalues = values(a.GetFieldData().GetArray(tcArrayNames.Eigenvalues()))
     assert eigenvalues == sorted(eigenvalues, reverse=True)
     assert boundaries.GetNumberOfLines() > 0
 
@@ -37,14 +38,14 @@ def test_every_face_gets_a_cluster_and_runs_are_identical(fandisk_curvature):
 def test_features_lines_and_corners(fandisk_curvature):
     clustered, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12)
     features, lines, corners = trichart.refine_features(clustered)
-    flags = values(features.GetPointData().GetArray("FeatureVertex"))
+    flags = values(features.GetPointData().GetArray(tcArrayNames.FeatureVertex()))
     assert lines.GetNumberOfLines() > 0 and sum(flags) > 0
     # Every point of a feature line is flagged on the mesh, through InputPointId.
-    ids = lines.GetPointData().GetArray("InputPointId")
+    ids = lines.GetPointData().GetArray(tcArrayNames.InputPointId())
     assert all(flags[int(ids.GetTuple1(i))] == 1 for i in range(ids.GetNumberOfTuples()))
-    corner_flags = values(features.GetPointData().GetArray("CornerVertex"))
+    corner_flags = values(features.GetPointData().GetArray(tcArrayNames.CornerVertex()))
     assert corners.GetNumberOfPoints() == sum(corner_flags) > 0
-    assert lines.GetCellData().GetArray("MeanAbsCurvature") is not None
+    assert lines.GetCellData().GetArray(tcArrayNames.MeanAbsCurvature()) is not None
 
 
 def test_a_stricter_threshold_keeps_fewer_lines(fandisk_curvature):
@@ -61,12 +62,12 @@ def test_clustering_needs_curvature(testing_data):
 
 
 def test_refinement_needs_clusters(fandisk_curvature):
-    with pytest.raises(TriChartError, match="ClusterId"):
+    with pytest.raises(TriChartError, match=tcArrayNames.ClusterId()):
         trichart.refine_features(fandisk_curvature)
 
 
 def test_normal_sigma_reaches_the_clustering(fandisk_curvature):
     plain, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12)
     creased, _ = trichart.cluster(fandisk_curvature, number_of_clusters=12, normal_sigma=0.05)
-    assert (values(plain.GetCellData().GetArray("ClusterId"))
-            != values(creased.GetCellData().GetArray("ClusterId")))
+    assert (values(plain.GetCellData().GetArray(tcArrayNames.ClusterId()))
+            != values(creased.GetCellData().GetArray(tcArrayNames.ClusterId())))

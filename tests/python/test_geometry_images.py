@@ -2,6 +2,7 @@
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 from trichart.pipeline import TriChartError
 
 
@@ -30,7 +31,7 @@ def points(mesh):
 
 
 def test_one_patch_per_base_face(bunny):
-    ids = bunny["patches"].GetCellData().GetArray("PatchId")
+    ids = bunny["patches"].GetCellData().GetArray(tcArrayNames.PatchId())
     assert ids.GetRange() == (0.0, bunny["base"].GetNumberOfPolys() - 1.0)
     assert bunny["paths"].GetNumberOfLines() == 3 * bunny["base"].GetNumberOfPolys() // 2
 
@@ -45,16 +46,17 @@ def test_atlas_file_round_trip_rebuilds_the_same_mesh(bunny, tmp_path):
         b = trichart.rebuild(again, level=level)
         assert closed(a)
         assert numpy.array_equal(points(a), points(b))
-    assert again.GetBlock(1).GetBlock(0).GetPointData().GetArray("MeanCurvature") is not None
+    finest = again.GetBlock(1).GetBlock(0)
+    assert finest.GetPointData().GetArray(tcArrayNames.MeanCurvature()) is not None
 
 
 def test_levels_per_chart_rebuild_a_closed_mesh(bunny):
     charts = trichart.atlas_charts(bunny["atlas"])
-    top = charts.GetColumnByName("MaxLevel")
+    top = charts.GetColumnByName(tcArrayNames.MaxLevel())
     levels = [0 if c % 2 else top.GetValue(c) for c in range(charts.GetNumberOfRows())]
     mesh = trichart.rebuild(bunny["atlas"], chart_levels=levels)
     assert closed(mesh)
-    level = mesh.GetCellData().GetArray("Level")
+    level = mesh.GetCellData().GetArray(tcArrayNames.Level())
     assert level.GetRange()[0] == 0 and level.GetRange()[1] == max(levels)
     with pytest.raises(TriChartError, match="ChartLevels"):
         trichart.rebuild(bunny["atlas"], chart_levels=levels[:-1])
@@ -65,7 +67,7 @@ def test_error_falls_as_the_level_rises(bunny):
     for level in (1, 2, 3):
         mesh, figures = trichart.surface_distance(trichart.rebuild(bunny["atlas"], level=level),
                                                   bunny["clean"])
-        assert mesh.GetPointData().GetArray("Distance") is not None
+        assert mesh.GetPointData().GetArray(tcArrayNames.Distance()) is not None
         assert figures["hausdorff"] >= figures["rms"] >= figures["mean"] > 0
         errors.append(figures["rms"] / figures["diagonal"])
     assert errors[0] > errors[1] > errors[2]
@@ -84,8 +86,8 @@ def test_stretch_reduction_lowers_the_error_of_the_mean_value_map(bunny):
 
     def figures(atlas):
         charts = trichart.atlas_charts(atlas)
-        error = charts.GetColumnByName("LevelError")
-        top = charts.GetColumnByName("MaxLevel")
+        error = charts.GetColumnByName(tcArrayNames.LevelError())
+        top = charts.GetColumnByName(tcArrayNames.MaxLevel())
         worst = max(error.GetComponent(c, top.GetValue(c)) for c in range(charts.GetNumberOfRows()))
         _, f = trichart.surface_distance(trichart.rebuild(atlas), bunny["clean"])
         return worst, f["rms"]
@@ -114,8 +116,8 @@ def test_fitted_samples_lower_the_error_of_the_finest_level(bunny):
 
     def figures(atlas):
         charts = trichart.atlas_charts(atlas)
-        error = charts.GetColumnByName("LevelError")
-        top = charts.GetColumnByName("MaxLevel")
+        error = charts.GetColumnByName(tcArrayNames.LevelError())
+        top = charts.GetColumnByName(tcArrayNames.MaxLevel())
         levels = [top.GetValue(c) for c in range(charts.GetNumberOfRows())]
         worst = max(error.GetComponent(c, levels[c]) for c in range(len(levels)))
         _, f = trichart.surface_distance(trichart.rebuild(atlas), bunny["clean"])

@@ -2,6 +2,7 @@
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +34,7 @@ def test_fixed_level_draws_every_chart(atlas):
     window.Render()
     count = mapper.GetNumberOfCharts()
     assert count == charts.GetNumberOfRows() > 0
-    column = charts.GetColumnByName("MaxLevel")
+    column = charts.GetColumnByName(tcArrayNames.MaxLevel())
     finest = [int(column.GetTuple1(c)) for c in range(count)]
     # Every chart at level 2 (or its finest when coarser): 4^level grid triangles each.
     assert mapper.GetTrianglesDrawn() == sum(4 ** min(2, m) for m in finest)
@@ -115,7 +116,7 @@ def test_color_by_attribute_maps_it_through_the_lookup_table(atlas):
     window.GetRenderers().GetFirstRenderer().SetBackground(0, 0, 0)
     mapper.SetFixedLevel(-1)
     mapper.SetColorMode(trichart.tcLODMapper.ColorByAttribute)
-    mapper.SetColorAttribute("MeanCurvature")
+    mapper.SetColorAttribute(tcArrayNames.MeanCurvature())
     table = vtkLookupTable()  # blue below the middle of the range, red above
     table.SetNumberOfTableValues(2)
     table.SetTableValue(0, 0, 0, 1, 1)

@@ -4,6 +4,7 @@ import math
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 from trichart.pipeline import TriChartError
 
 
@@ -21,7 +22,7 @@ def test_read_prepare_curvature_on_the_bunny(testing_data):
     clean, report = trichart.prepare(mesh)
     assert clean.GetNumberOfPolys() == 3674
     surface, crest = trichart.curvature(clean)
-    k = surface.GetPointData().GetArray("PrincipalCurvatures")
+    k = surface.GetPointData().GetArray(tcArrayNames.PrincipalCurvatures())
     assert k.GetNumberOfComponents() == 2
     assert all(k.GetComponent(i, 0) >= k.GetComponent(i, 1) for i in range(k.GetNumberOfTuples()))
     assert all(math.isfinite(k.GetComponent(i, 0)) for i in range(k.GetNumberOfTuples()))
@@ -117,11 +118,11 @@ def test_fill_holes_closes_an_open_sphere():
     closed, report = trichart.prepare(kept, fill_holes=True)
     print(report)
     assert "filled 2 holes" in report and "boundary edge" not in report
-    boundary = closed.GetPointData().GetArray("BoundaryVertex")
+    boundary = closed.GetPointData().GetArray(tcArrayNames.BoundaryVertex())
     assert max(boundary.GetValue(i) for i in range(boundary.GetNumberOfTuples())) == 0
     new_points = closed.GetNumberOfPoints() - opened.GetNumberOfPoints()
     assert new_points > 0
-    input_ids = closed.GetPointData().GetArray("InputPointId")
+    input_ids = closed.GetPointData().GetArray(tcArrayNames.InputPointId())
     assert sum(1 for i in range(input_ids.GetNumberOfTuples()) if input_ids.GetValue(i) < 0) \
         == new_points
     # Faired patches follow the sphere (radius 0.5) closely.
@@ -165,10 +166,10 @@ def test_remove_slivers_collapses_the_needles_of_a_uv_sphere():
     assert left < needles / 10 and (f"left {left} sliver" in report) == (left > 0)
     assert clean.GetNumberOfPoints() < plain.GetNumberOfPoints()
     # No point moved: every output point is where its input point was.
-    input_ids = clean.GetPointData().GetArray("InputPointId")
+    input_ids = clean.GetPointData().GetArray(tcArrayNames.InputPointId())
     for i in range(clean.GetNumberOfPoints()):
         assert clean.GetPoint(i) == sphere.GetPoint(input_ids.GetValue(i))
-    boundary = clean.GetPointData().GetArray("BoundaryVertex")
+    boundary = clean.GetPointData().GetArray(tcArrayNames.BoundaryVertex())
     assert max(boundary.GetValue(i) for i in range(boundary.GetNumberOfTuples())) == 0
     # A looser needle ratio leaves them.
     _, report = trichart.prepare(sphere, remove_slivers=True, sliver_edge_ratio=20.0)

@@ -6,6 +6,7 @@ import math
 import pytest
 
 import trichart
+from trichart import tcArrayNames
 
 SMALL = ["bunny_npm.off", "elephant.off", "cow.off", "homer.off", "teapot_npm.off",
          "horse_glmark2.obj", "dragon_vrip_res4.ply.gz"]
@@ -24,10 +25,10 @@ def test_prepare_and_curvature_on_shared_meshes(shared_data, name, split):
     clean, report = trichart.prepare(mesh, split_non_manifold=split)
     assert clean.GetNumberOfPolys() > 0
     surface, _ = trichart.curvature(clean)
-    k = surface.GetPointData().GetArray("PrincipalCurvatures")
+    k = surface.GetPointData().GetArray(tcArrayNames.PrincipalCurvatures())
     assert k.GetNumberOfTuples() == clean.GetNumberOfPoints()
     assert finite(k)
-    flags = clean.GetCellData().GetArray("NonManifoldEdge")
+    flags = clean.GetCellData().GetArray(tcArrayNames.NonManifoldEdge())
     flagged = sum(flags.GetValue(i) for i in range(flags.GetNumberOfTuples()))
     if name in ("horse_glmark2.obj", "dragon_vrip_res4.ply.gz"):
         # Both are listed with non-manifold edges in the data README.
@@ -80,7 +81,7 @@ def test_preparation_counts_match_the_edges_of_its_output(shared_data, name, spl
         assert feature_edge_count(clean, False) == 0
     else:
         assert (f.GetNonManifoldEdges() > 0) == (feature_edge_count(clean, False) > 0)
-    flagged = clean.GetPointData().GetArray("NonManifoldVertex")
+    flagged = clean.GetPointData().GetArray(tcArrayNames.NonManifoldVertex())
     assert f.GetNonManifoldVertices() <= sum(flagged.GetValue(i)
                                              for i in range(flagged.GetNumberOfTuples()))
     closed = boundary == 0 and f.GetNonOrientableComponents() == 0 and \
@@ -132,7 +133,7 @@ def test_scene_files_are_read_in_their_rest_pose(shared_data, name, importer, tr
     assert "importer: " in report and importer in report, report
     assert (f"{bones} bones" in report) == (bones > 0), report
     mesh = reader.GetOutput()
-    ids = mesh.GetCellData().GetArray("SceneMeshId")
+    ids = mesh.GetCellData().GetArray(tcArrayNames.SceneMeshId())
     assert ids is not None and ids.GetNumberOfTuples() == mesh.GetNumberOfCells()
     clean, _ = trichart.prepare(mesh)
     assert clean.GetNumberOfPolys() == triangles

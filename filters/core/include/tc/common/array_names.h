@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file array_names.h
-/// Names of the arrays and field data that TriChart stages share. Every stage, the app and the
-/// Python package read the names from here; strings are never retyped.
+/// Names of the arrays, field data and blocks that TriChart stages share. Every stage, the app and
+/// the Python package read the names from here; strings are never retyped. Python reads them
+/// through the wrapped class tcArrayNames (filters/IO), generated from this file: tc::kX is
+/// tcArrayNames.X().
 #pragma once
 
 namespace tc
@@ -45,7 +47,8 @@ constexpr const char* kBaseEdgeIsFeature =
 // tcPathTracing
 constexpr const char* kPatchId = "PatchId";       ///< cell: base face (= patch, = chart) of a piece
 constexpr const char* kBaseEdgeId = "BaseEdgeId"; ///< path cell: the base edge it traces
-constexpr const char* kSteinerEdge = "SteinerEdge"; ///< point: 2 input points of its input edge (-1 -1)
+constexpr const char* kSteinerEdge =
+  "SteinerEdge"; ///< point: 2 input points of its input edge (-1 -1)
 constexpr const char* kSteinerParameter = "SteinerParameter"; ///< point: t along that edge
 constexpr const char* kBaseVertexIds = "BaseVertexIds"; ///< field: input point of each base vertex
 constexpr const char* kBaseTriangles = "BaseTriangles"; ///< field: #Fb x 3 base vertex indices
@@ -56,29 +59,40 @@ constexpr const char* kPathPoints = "PathPoints";       ///< field: point ids of
 
 // tcGeometryImages / tcGeometryImageMesh (the atlas as a multiblock: block 0 the chart table,
 // block 1 one vtkImageData per mip step)
-constexpr const char* kChartId = "ChartId";           ///< cell / table: chart of a triangle
-constexpr const char* kLevel = "Level";               ///< cell: level it was rebuilt at
-constexpr const char* kMaxLevel = "MaxLevel";         ///< table: d_max
+constexpr const char* kChartId = "ChartId";             ///< cell / table: chart of a triangle
+constexpr const char* kLevel = "Level";                 ///< cell: level it was rebuilt at
+constexpr const char* kMaxLevel = "MaxLevel";           ///< table: d_max
 constexpr const char* kChartCorners = "CornerVertices"; ///< table: 3 base vertices (input ids)
-constexpr const char* kNeighborChart = "NeighborChart";   ///< table: chart across each side
-constexpr const char* kNeighborSide = "NeighborSide";     ///< table: its side
-constexpr const char* kFeatureSide = "FeatureSide";       ///< table: side follows a feature
-constexpr const char* kPartner = "Partner";               ///< table: chart sharing the rectangle
-constexpr const char* kRotated = "Rotated";               ///< table: upper-right, turned 180 deg
-constexpr const char* kOrigin = "Origin";     ///< table: 2 x levels texel of sample (0,0) per image
-constexpr const char* kBox = "OrientedBox";   ///< table: 4 corners (c0 and its 3 neighbours)
-constexpr const char* kLevelError = "LevelError"; ///< table: error per level (NaN: none)
+constexpr const char* kNeighborChart = "NeighborChart"; ///< table: chart across each side
+constexpr const char* kNeighborSide = "NeighborSide";   ///< table: its side
+constexpr const char* kFeatureSide = "FeatureSide";     ///< table: side follows a feature
+constexpr const char* kPartner = "Partner";             ///< table: chart sharing the rectangle
+constexpr const char* kRotated = "Rotated";             ///< table: upper-right, turned 180 deg
+constexpr const char* kOrigin = "Origin";   ///< table: 2 x levels texel of sample (0,0) per image
+constexpr const char* kBox = "OrientedBox"; ///< table: 4 corners (c0 and its 3 neighbours)
+constexpr const char* kLevelError = "LevelError";         ///< table: error per level (NaN: none)
 constexpr const char* kAtlasSource = "AtlasSource";       ///< field: what it was built from
 constexpr const char* kInputPoints = "InputPoints";       ///< field: input point count
 constexpr const char* kInputTriangles = "InputTriangles"; ///< field: input triangle count
 constexpr const char* kInputDiagonal = "InputDiagonal";   ///< field: input bounding-box diagonal
 constexpr const char* kSampleChart = "SampleChart"; ///< rebuilt point: chart, i, j it was read from
+constexpr const char* kChartsBlock = "Charts";      ///< block 0 of the atlas: the chart table
+constexpr const char* kImagesBlock = "Images"; ///< block 1 of the atlas: one image per mip step
+constexpr const char* kImageBlockPrefix = "Image "; ///< image k of block 1 is "Image k"
 
 // tcSurfaceDistance
-constexpr const char* kDistance = "Distance"; ///< point: distance to the other surface
+constexpr const char* kDistance = "Distance";             ///< point: distance to the other surface
 constexpr const char* kDistanceReport = "DistanceReport"; ///< field: the figures, as text
+constexpr const char* kHausdorff = "Hausdorff";           ///< field: symmetric Hausdorff distance
+constexpr const char* kMeanDistance = "MeanDistance";     ///< field: symmetric mean distance
+constexpr const char* kRmsDistance = "RmsDistance";       ///< field: symmetric RMS distance
+constexpr const char* kRelativeHausdorff = "RelativeHausdorff"; ///< field: Hausdorff / diagonal
+constexpr const char* kRelativeMeanDistance = "RelativeMeanDistance"; ///< field: mean / diagonal
+constexpr const char* kRelativeRmsDistance = "RelativeRmsDistance";   ///< field: RMS / diagonal
+constexpr const char* kReferenceDiagonal =
+  "ReferenceDiagonal"; ///< field: reference's bbox diagonal
 
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
-constexpr const char* kSceneMeshId = "SceneMeshId"; ///< cell: mesh of a scene file (glTF, FBX...)
+constexpr const char* kSceneMeshId = "SceneMeshId";   ///< cell: mesh of a scene file (glTF, FBX...)
 } // namespace tc
