@@ -11,6 +11,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRendere
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text of the scalar bar)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
 
+from .TriChartIO import tcArrayNames
 from .TriChartRendering import tcColorMaps
 
 
@@ -63,8 +64,10 @@ def _label_mapper(data, array, cell):
     return mapper
 
 
-def curvature_scene(surface, crest=None, array="MeanCurvature", size=(800, 600)):
-    """A render window with `surface` coloured by `array`, crest lines on top, and a legend."""
+def curvature_scene(surface, crest=None, array=None, size=(800, 600)):
+    """A render window with `surface` coloured by `array` (default MeanCurvature), crest lines
+    on top, and a legend."""
+    array = array or tcArrayNames.MeanCurvature()
     lut = vtkLookupTable()
     tcColorMaps.DivergingColors(lut, surface.GetPointData().GetArray(array), 0)
     mapper = vtkPolyDataMapper()
@@ -110,7 +113,7 @@ def write_png(window, path):
     return path
 
 
-def render_curvature(surface, crest, path, array="MeanCurvature"):
+def render_curvature(surface, crest, path, array=None):
     """Save a picture of the curvature stage to `path`."""
     return write_png(curvature_scene(surface, crest, array), path)
 
@@ -120,7 +123,7 @@ def features_scene(features, lines=None, corners=None, size=(800, 600)):
     from vtkmodules.vtkFiltersSources import vtkSphereSource
     from vtkmodules.vtkFiltersCore import vtkGlyph3D
 
-    mapper = _label_mapper(features, "ClusterId", cell=True)
+    mapper = _label_mapper(features, tcArrayNames.ClusterId(), cell=True)
     actor = vtkActor()
     actor.SetMapper(mapper)
     renderer = _renderer()
@@ -154,7 +157,7 @@ def base_complex_scene(base, parameterized, size=(800, 600)):
     their base face (BaseFaceId)."""
     from vtkmodules.vtkFiltersCore import vtkExtractEdges
 
-    mapper = _label_mapper(parameterized, "BaseFaceId", cell=False)
+    mapper = _label_mapper(parameterized, tcArrayNames.BaseFaceId(), cell=False)
     mapper.InterpolateScalarsBeforeMappingOff()  # blend the two labels, never invent a third
     actor = vtkActor()
     actor.SetMapper(mapper)
