@@ -23,9 +23,18 @@ bool isBlank(char c)
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-/// Whole-token number parsing at from_chars speed. A leading '+' is accepted (from_chars does
-/// not take it); values beyond the double range become +-Inf or 0 as strtod makes them.
-bool parseDouble(std::string_view token, double& value)
+/// How from_chars read a whole token.
+enum class Parsed
+{
+  Ok,
+  OutOfRange, ///< every character read, but the value is beyond the type's range
+  Bad,
+};
+
+/// std::from_chars over the whole token, after an optional leading '+' (which from_chars does
+/// not take).
+template <typename T>
+Parsed parseWhole(std::string_view token, T& value)
 {
   const char* begin = token.data();
   const char* end = begin + token.size();
@@ -34,24 +43,30 @@ bool parseDouble(std::string_view token, double& value)
     ++begin;
   }
   const auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec == std::errc::result_out_of_range && ptr == end)
+  if (ptr != end || begin == end)
+  {
+    return Parsed::Bad;
+  }
+  return ec == std::errc()
+    ? Parsed::Ok
+    : (ec == std::errc::result_out_of_range ? Parsed::OutOfRange : Parsed::Bad);
+}
+
+/// Whole-token number parsing at from_chars speed. Values beyond the double range become +-Inf
+/// or 0 as strtod makes them.
+bool parseDouble(std::string_view token, double& value)
+{
+  const Parsed parsed = parseWhole(token, value);
+  if (parsed == Parsed::OutOfRange)
   {
     value = std::strtod(std::string(token).c_str(), nullptr);
-    return true;
   }
-  return ec == std::errc() && ptr == end && begin != end;
+  return parsed != Parsed::Bad;
 }
 
 bool parseInteger(std::string_view token, int64_t& value)
 {
-  const char* begin = token.data();
-  const char* end = begin + token.size();
-  if (begin != end && *begin == '+')
-  {
-    ++begin;
-  }
-  const auto [ptr, ec] = std::from_chars(begin, end, value);
-  return ec == std::errc() && ptr == end && begin != end;
+  return parseWhole(token, value) == Parsed::Ok;
 }
 
 /// Line-by-line view of an OFF file held in memory. Comments ('#' to the end of the line) and
@@ -175,27 +190,24 @@ std::string quoted(std::string_view token)
   }
   return "'" + shown + "'";
 }
-} // namespace
-
-// Parsed by hand rather than with CGAL::IO::read_OFF: CGAL reports a bad file as a bare
-// `false`, while users fixing a broken file need to be told which line is wrong and why.
-PolygonSoup readOFF(const std::string& path)
+/// The next token, on this line or, when it has no more, on the next line with one.
+bool nextTokenOrLine(OffScanner& scan, std::string_view& token)
 {
-  const std::string text = readWholeFile(path);
-  const char* begin = text.data();
-  const char* end = begin + text.size();
-  if (text.size() >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0)
-  {
-    begin += 3;
-  }
-  if (begin == end)
-  {
-    throw InputError(path + ": not an OFF file: it is empty");
-  }
-  OffScanner scan(path, begin, end);
-  std::string_view token;
+  return scan.nextToken(token) || (scan.nextLine() && scan.nextToken(token));
+}
 
-  // Keyword [ST][C][N][4][n]OFF: only the 4 and n prefixes change the vertex layout.
+/// What the keyword line says about the vertex lines.
+struct VertexLayout
+{
+  bool homogeneous = false; ///< 4OFF: x y z w, the point being x/w y/w z/w
+  int64_t dimension = 3;    ///< nOFF: coordinates per point (3 otherwise)
+  int64_t columns() const { return dimension + (homogeneous ? 1 : 0); }
+};
+
+/// Reads the keyword [ST][C][N][4][n]OFF (only the 4 and n prefixes change the vertex layout)
+/// and the dimension of nOFF; leaves `token` at the first count.
+VertexLayout readKeyword(OffScanner& scan, std::string_view& token)
+{
   if (!scan.nextLine() || !scan.nextToken(token))
   {
     scan.fail("not an OFF file: it is empty");
@@ -213,40 +225,41 @@ PolygonSoup readOFF(const std::string& path)
   eat("ST");
   eat("C");
   eat("N");
-  const bool homogeneous = eat("4");
+  VertexLayout layout;
+  layout.homogeneous = eat("4");
   const bool anyDimension = eat("n");
   if (keyword != "OFF")
   {
     scan.fail("not an OFF file: the first word is " + quoted(token) +
       ", expected OFF (or COFF, NOFF, CNOFF, STOFF, 4OFF, nOFF)");
   }
-  if (!scan.nextToken(token))
+  if (!nextTokenOrLine(scan, token))
   {
-    if (!scan.nextLine() || !scan.nextToken(token))
-    {
-      scan.fail("the file ends before the counts line 'vertices faces edges'");
-    }
+    scan.fail("the file ends before the counts line 'vertices faces edges'");
   }
   if (token == "BINARY")
   {
     scan.fail("binary OFF is not supported; convert the file to ASCII OFF");
   }
-  int64_t dimension = 3;
   if (anyDimension)
   {
-    if (!parseInteger(token, dimension) || dimension < 1 || dimension > 64)
+    if (!parseInteger(token, layout.dimension) || layout.dimension < 1 || layout.dimension > 64)
     {
       scan.fail("bad nOFF dimension " + quoted(token) + ", expected an integer from 1 to 64");
     }
-    if (!scan.nextToken(token) && (!scan.nextLine() || !scan.nextToken(token)))
+    if (!nextTokenOrLine(scan, token))
     {
       scan.fail("the file ends before the counts line 'vertices faces edges'");
     }
   }
-  const int64_t columns = dimension + (homogeneous ? 1 : 0);
+  return layout;
+}
 
-  int64_t numVertices = 0;
-  int64_t numFaces = 0;
+/// Reads the vertex and face counts from `token` on, refusing counts that a file of `bytes`
+/// bytes cannot hold.
+void readCounts(
+  OffScanner& scan, std::string_view& token, int64_t bytes, int64_t& numVertices, int64_t& numFaces)
+{
   if (!parseInteger(token, numVertices) || numVertices < 0)
   {
     scan.fail("bad vertex count " + quoted(token) +
@@ -260,18 +273,21 @@ PolygonSoup readOFF(const std::string& path)
   }
   // A vertex line takes at least 6 bytes and a face line 8: larger counts cannot be right, and
   // must not make us reserve gigabytes.
-  const int64_t bytes = static_cast<int64_t>(end - begin);
   if (numVertices > bytes / 6 + 1 || numFaces > bytes / 8 + 1)
   {
     scan.fail("the counts (" + std::to_string(numVertices) + " vertices, " +
       std::to_string(numFaces) + " faces) do not fit in a file of " + std::to_string(bytes) +
       " bytes; the file is truncated or the counts are wrong");
   }
+}
 
-  PolygonSoup soup;
+/// Reads `numVertices` vertex lines into soup.points.
+void readVertices(
+  OffScanner& scan, const VertexLayout& layout, int64_t numVertices, PolygonSoup& soup)
+{
+  const int64_t columns = layout.columns();
+  std::string_view token;
   soup.points.resize(3 * numVertices);
-  soup.offsets.reserve(numFaces + 1);
-  soup.connectivity.reserve(3 * numFaces);
   double coordinates[65];
   for (int64_t v = 0; v < numVertices; ++v)
   {
@@ -292,13 +308,18 @@ PolygonSoup readOFF(const std::string& path)
         scan.fail("vertex " + std::to_string(v) + ": " + quoted(token) + " is not a number");
       }
     }
-    const double w = homogeneous ? coordinates[columns - 1] : 1.0;
+    const double w = layout.homogeneous ? coordinates[columns - 1] : 1.0;
     for (int64_t c = 0; c < 3; ++c)
     {
-      soup.points[3 * v + c] = c < dimension ? coordinates[c] / w : 0.0;
+      soup.points[3 * v + c] = c < layout.dimension ? coordinates[c] / w : 0.0;
     }
   }
+}
 
+/// Reads `numFaces` face lines "n i0 .. i(n-1) [colour]" into the soup's polygons.
+void readFaces(OffScanner& scan, int64_t numVertices, int64_t numFaces, PolygonSoup& soup)
+{
+  std::string_view token;
   for (int64_t f = 0; f < numFaces; ++f)
   {
     if (!scan.nextLine())
@@ -335,20 +356,56 @@ PolygonSoup readOFF(const std::string& path)
     }
     soup.offsets.push_back(static_cast<int64_t>(soup.connectivity.size()));
   }
+}
+} // namespace
+
+// Parsed by hand rather than with CGAL::IO::read_OFF: CGAL reports a bad file as a bare
+// `false`, while users fixing a broken file need to be told which line is wrong and why.
+PolygonSoup readOFF(const std::string& path)
+{
+  // 1. The whole file, without a UTF-8 byte order mark.
+  const std::string text = readWholeFile(path);
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (text.size() >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0)
+  {
+    begin += 3;
+  }
+  if (begin == end)
+  {
+    throw InputError(path + ": not an OFF file: it is empty");
+  }
+  OffScanner scan(path, begin, end);
+  std::string_view token;
+
+  // 2. The keyword and the counts "V F [E]", on its line or the next.
+  const VertexLayout layout = readKeyword(scan, token);
+  int64_t numVertices = 0;
+  int64_t numFaces = 0;
+  readCounts(scan, token, static_cast<int64_t>(end - begin), numVertices, numFaces);
+
+  // 3. The vertices, then the faces; anything after them (an edge list) is ignored.
+  PolygonSoup soup;
+  soup.offsets.reserve(numFaces + 1);
+  soup.connectivity.reserve(3 * numFaces);
+  readVertices(scan, layout, numVertices, soup);
+  readFaces(scan, numVertices, numFaces, soup);
   return soup;
 }
 
-void writeOFF(const std::string& path, const TriMesh& mesh)
+namespace
+{
+/// Refuses arrays that are not whole triples and triangles that refer to missing points.
+void checkMesh(const std::string& path, const TriMesh& mesh)
 {
   const int64_t nv = mesh.numPoints();
-  const int64_t nf = mesh.numTriangles();
   if (mesh.points.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)
   {
     throw InputError("writeOFF " + path +
       ": the point and triangle arrays must hold whole "
       "triples");
   }
-  for (int64_t i = 0; i < 3 * nf; ++i)
+  for (int64_t i = 0; i < 3 * mesh.numTriangles(); ++i)
   {
     if (mesh.triangles[i] < 0 || mesh.triangles[i] >= nv)
     {
@@ -357,8 +414,14 @@ void writeOFF(const std::string& path, const TriMesh& mesh)
         std::to_string(nv) + " points");
     }
   }
+}
 
-  // std::to_chars without a format gives the shortest text that reads back to the same double.
+/// The OFF text of `mesh`. std::to_chars without a format gives the shortest text that reads
+/// back to the same double.
+std::string offText(const TriMesh& mesh)
+{
+  const int64_t nv = mesh.numPoints();
+  const int64_t nf = mesh.numTriangles();
   std::string text;
   text.reserve(static_cast<size_t>(nv * 3 * 24 + nf * 28 + 64));
   text += "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
@@ -380,7 +443,12 @@ void writeOFF(const std::string& path, const TriMesh& mesh)
     }
     text += '\n';
   }
+  return text;
+}
 
+/// Writes `text` to a temporary file beside `path` and renames it over `path`.
+void writeReplacing(const std::string& path, const std::string& text)
+{
   // A unique name beside the target keeps the final rename on one file system (so it is atomic)
   // and lets two writers of different files in one folder never collide.
   static std::atomic<uint64_t> counter{ 0 };
@@ -408,5 +476,12 @@ void writeOFF(const std::string& path, const TriMesh& mesh)
     std::remove(temporary.c_str());
     throw InputError("cannot write " + path + ": " + ec.message());
   }
+}
+} // namespace
+
+void writeOFF(const std::string& path, const TriMesh& mesh)
+{
+  checkMesh(path, mesh);
+  writeReplacing(path, offText(mesh));
 }
 } // namespace tc

@@ -4,6 +4,8 @@
 #include "tc/common/errors.h"
 #include "tc/common/parallel.h"
 
+#include "common/splitmix.h"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -143,21 +145,19 @@ void allocateSamples(Surface& s, int64_t target)
   }
 }
 
-// SplitMix64 (Steele, Lea and Flood 2014), written out rather than a <random> engine: one
-// stream per triangle, keyed by (seed, triangle), costs two words of state and makes every
-// sample independent of the thread that draws it, so results are bitwise reproducible.
-uint64_t splitMix(uint64_t& state)
-{
-  uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-/// Uniform in [0, 1) with 53 random bits.
+/// Uniform in [0, 1) with 53 random bits. SplitMix64 rather than a <random> engine: one stream
+/// per triangle, keyed by (seed, triangle), costs two words of state and makes every sample
+/// independent of the thread that draws it, so results are bitwise reproducible.
 double uniform(uint64_t& state)
 {
-  return static_cast<double>(splitMix(state) >> 11) * 0x1.0p-53;
+  return static_cast<double>(detail::splitMix(state) >> 11) * 0x1.0p-53;
+}
+
+/// Distance from p to its closest point, 0 below the noise floor.
+double distanceTo(const Point& p, const Point& closest, double floor)
+{
+  const double d = std::sqrt(CGAL::squared_distance(p, closest));
+  return d < floor ? 0.0 : d;
 }
 
 struct OneSided
@@ -167,32 +167,106 @@ struct OneSided
   double rms = 0.0;
 };
 
-/// Distances of the samples of `from` to `to`.
-OneSided measure(const TriMesh& from, const Surface& source, const Surface& to, uint32_t seed,
-  double floor, std::vector<double>* pointDistance, const Progress& progress)
+/// The distances of the area samples of one triangle to a surface: their sum, sum of squares
+/// and maximum.
+class TriangleSampler
 {
-  auto distance = [floor](const Point& p, const Point& closest)
+public:
+  TriangleSampler(const Triangle& tri, int64_t k, const Tree& to, double floor)
+    : A(tri.vertex(0))
+    , AB{ tri.vertex(1).x() - A.x(), tri.vertex(1).y() - A.y(), tri.vertex(1).z() - A.z() }
+    , AC{ tri.vertex(2).x() - A.x(), tri.vertex(2).y() - A.y(), tri.vertex(2).z() - A.z() }
+    , Inv(1.0 / static_cast<double>(k))
+    , To(to)
+    , Floor(floor)
   {
-    const double d = std::sqrt(CGAL::squared_distance(p, closest));
-    return d < floor ? 0.0 : d;
-  };
-  const double vertexShare = static_cast<double>(source.vertexSamples) /
-    static_cast<double>(source.vertexSamples + source.areaSamples);
+  }
 
-  // Every vertex: Metro's vertex sampling; the maxima of the distance often sit there.
+  /// The sample at lattice coordinates (s, r): a + (s / k)(b - a) + (r / k)(c - a).
+  void sample(double s, double r)
+  {
+    const double bs = s * Inv, br = r * Inv;
+    const Point p(A.x() + bs * AB[0] + br * AC[0], A.y() + bs * AB[1] + br * AC[1],
+      A.z() + bs * AB[2] + br * AC[2]);
+    // Neighbouring samples have nearby closest points: the previous answer is a good start.
+    Closest =
+      Hinted ? To.closest_point_and_primitive(p, Closest) : To.closest_point_and_primitive(p);
+    Hinted = true;
+    const double d = distanceTo(p, Closest.first, Floor);
+    Sum += d;
+    Sum2 += d * d;
+    Max = std::max(Max, d);
+  }
+
+  double Sum = 0.0, Sum2 = 0.0, Max = 0.0;
+
+private:
+  const Point& A;
+  const double AB[3];
+  const double AC[3];
+  const double Inv;
+  const Tree& To;
+  const double Floor;
+  Hint Closest;
+  bool Hinted = false;
+};
+
+/// Samples the k x k sub-triangles of one triangle (see the comment in measure), drawing from
+/// the stream `state`.
+void sampleTriangle(TriangleSampler& sampler, int64_t k, uint64_t state)
+{
+  for (int64_t i = 0; i < k; ++i)
+  {
+    for (int64_t j = 0; i + j < k; ++j)
+    {
+      if (i + j + 1 == k)
+      {
+        sampler.sample(static_cast<double>(i) + 1.0 / 3.0, static_cast<double>(j) + 1.0 / 3.0);
+        continue;
+      }
+      // Uniform in the unit right triangle (fold the other half of the square onto it).
+      double u = uniform(state), v = uniform(state);
+      if (u + v > 1.0)
+      {
+        u = 1.0 - u;
+        v = 1.0 - v;
+      }
+      sampler.sample(static_cast<double>(i) + u, static_cast<double>(j) + v);
+      sampler.sample(static_cast<double>(i + 1) - u, static_cast<double>(j + 1) - v);
+    }
+  }
+}
+
+/// Distance of every point of `from` to `to` (of the used ones only, unless all are asked for).
+std::vector<double> vertexDistances(const TriMesh& from, const Surface& source, const Surface& to,
+  double floor, bool all, const Progress& progress)
+{
   const int64_t nv = from.numPoints();
   std::vector<double> vertexDistance(nv, 0.0);
   parallel_for(
     nv,
     [&](int64_t v)
     {
-      if (source.used[v] || pointDistance)
+      if (source.used[v] || all)
       {
         const Point p(from.points[3 * v], from.points[3 * v + 1], from.points[3 * v + 2]);
-        vertexDistance[v] = distance(p, to.tree.closest_point(p));
+        vertexDistance[v] = distanceTo(p, to.tree.closest_point(p), floor);
       }
     },
-    progress.sub(0.0, vertexShare));
+    progress);
+  return vertexDistance;
+}
+
+/// Distances of the samples of `from` to `to`.
+OneSided measure(const TriMesh& from, const Surface& source, const Surface& to, uint32_t seed,
+  double floor, std::vector<double>* pointDistance, const Progress& progress)
+{
+  const double vertexShare = static_cast<double>(source.vertexSamples) /
+    static_cast<double>(source.vertexSamples + source.areaSamples);
+
+  // Every vertex: Metro's vertex sampling; the maxima of the distance often sit there.
+  std::vector<double> vertexDistance = vertexDistances(
+    from, source, to, floor, pointDistance != nullptr, progress.sub(0.0, vertexShare));
 
   // Stratified area samples: triangle (a, b, c) is cut into k x k sub-triangles of area A / k^2
   // along the lattice a + (i / k)(b - a) + (j / k)(c - a). Upright cell (i, j), i + j < k,
@@ -212,56 +286,14 @@ OneSided measure(const TriMesh& from, const Surface& source, const Surface& to, 
     nf,
     [&](int64_t t)
     {
-      const Triangle& tri = source.triangles[t];
-      const Point& a = tri.vertex(0);
-      const double ab[3] = { tri.vertex(1).x() - a.x(), tri.vertex(1).y() - a.y(),
-        tri.vertex(1).z() - a.z() };
-      const double ac[3] = { tri.vertex(2).x() - a.x(), tri.vertex(2).y() - a.y(),
-        tri.vertex(2).z() - a.z() };
       const int64_t k = source.k[t];
+      TriangleSampler sampler(source.triangles[t], k, to.tree, floor);
+      sampleTriangle(sampler, k, seedKey ^ static_cast<uint64_t>(t));
       const double inv = 1.0 / static_cast<double>(k);
-      uint64_t state = seedKey ^ static_cast<uint64_t>(t);
-      double sum = 0.0, sum2 = 0.0, max = 0.0;
-      Hint hint;
-      bool hinted = false;
-      auto sample = [&](double s, double r)
-      {
-        const double bs = s * inv, br = r * inv;
-        const Point p(a.x() + bs * ab[0] + br * ac[0], a.y() + bs * ab[1] + br * ac[1],
-          a.z() + bs * ab[2] + br * ac[2]);
-        // Neighbouring samples have nearby closest points: the previous answer is a good start.
-        hint = hinted ? to.tree.closest_point_and_primitive(p, hint)
-                      : to.tree.closest_point_and_primitive(p);
-        hinted = true;
-        const double d = distance(p, hint.first);
-        sum += d;
-        sum2 += d * d;
-        max = std::max(max, d);
-      };
-      for (int64_t i = 0; i < k; ++i)
-      {
-        for (int64_t j = 0; i + j < k; ++j)
-        {
-          if (i + j + 1 == k)
-          {
-            sample(static_cast<double>(i) + 1.0 / 3.0, static_cast<double>(j) + 1.0 / 3.0);
-            continue;
-          }
-          // Uniform in the unit right triangle (fold the other half of the square onto it).
-          double u = uniform(state), v = uniform(state);
-          if (u + v > 1.0)
-          {
-            u = 1.0 - u;
-            v = 1.0 - v;
-          }
-          sample(static_cast<double>(i) + u, static_cast<double>(j) + v);
-          sample(static_cast<double>(i + 1) - u, static_cast<double>(j + 1) - v);
-        }
-      }
       const double weight = source.area[t] * inv * inv;
-      faceSum[t] = weight * sum;
-      faceSum2[t] = weight * sum2;
-      faceMax[t] = max;
+      faceSum[t] = weight * sampler.Sum;
+      faceSum2[t] = weight * sampler.Sum2;
+      faceMax[t] = sampler.Max;
     },
     progress.sub(vertexShare, 1.0));
 
@@ -274,7 +306,7 @@ OneSided measure(const TriMesh& from, const Surface& source, const Surface& to, 
     sum2 += faceSum2[t];
     r.max = std::max(r.max, faceMax[t]);
   }
-  for (int64_t v = 0; v < nv; ++v)
+  for (int64_t v = 0; v < from.numPoints(); ++v)
   {
     if (source.used[v])
     {
@@ -289,73 +321,45 @@ OneSided measure(const TriMesh& from, const Surface& source, const Surface& to, 
   }
   return r;
 }
-} // namespace
 
-SurfaceDistanceResult surfaceDistance(const TriMesh& mesh, const TriMesh& reference,
-  const SurfaceDistanceOptions& options, const Progress& progress)
+/// Distances below this are rounding noise: kNoiseFloor times the largest absolute coordinate
+/// of the two meshes.
+double noiseFloor(const TriMesh& mesh, const TriMesh& reference)
 {
-  validate(mesh, "mesh");
-  validate(reference, "reference");
-  if (options.samplesPerMesh < 0 || options.samplesPerMesh > kMaxSamples)
-  {
-    throw InputError("surfaceDistance: samplesPerMesh is " +
-      std::to_string(options.samplesPerMesh) +
-      ": pass 0 (automatic) or a sample count of at most 10^12");
-  }
-  progress.report(0.0);
-
-  Surface m, r;
-  prepare(m, mesh, "mesh");
-  prepare(r, reference, "reference");
-  auto target = [&options](int64_t triangles)
-  {
-    return options.samplesPerMesh > 0
-      ? options.samplesPerMesh
-      : std::min(kMaxAutoSamples, std::max(kMinAutoSamples, kAutoSamplesPerTriangle * triangles));
-  };
-  allocateSamples(m, target(mesh.numTriangles()));
-  allocateSamples(r, target(reference.numTriangles()));
-
   double largest = 0.0;
   for (const double x : mesh.points)
   {
     largest = std::max(largest, std::abs(x));
   }
-  SurfaceDistanceResult result;
-  double lo[3] = { reference.points[0], reference.points[1], reference.points[2] };
+  for (const double x : reference.points)
+  {
+    largest = std::max(largest, std::abs(x));
+  }
+  return kNoiseFloor * largest;
+}
+
+/// Diagonal of the bounding box of the points of `m`.
+double boxDiagonal(const TriMesh& m)
+{
+  double lo[3] = { m.points[0], m.points[1], m.points[2] };
   double hi[3] = { lo[0], lo[1], lo[2] };
-  for (int64_t v = 0; v < reference.numPoints(); ++v)
+  for (int64_t v = 0; v < m.numPoints(); ++v)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const double x = reference.points[3 * v + c];
+      const double x = m.points[3 * v + c];
       lo[c] = std::min(lo[c], x);
       hi[c] = std::max(hi[c], x);
-      largest = std::max(largest, std::abs(x));
     }
   }
-  result.diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
-    (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const double floor = kNoiseFloor * largest;
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
 
-  // Building the trees takes a few percent of the time; it cannot be interrupted.
-  const double forwardWork = static_cast<double>(m.vertexSamples + m.areaSamples);
-  const double backwardWork = static_cast<double>(r.vertexSamples + r.areaSamples);
-  const double built = 0.05;
-  const double split = built + (1.0 - built) * forwardWork / (forwardWork + backwardWork);
-  for (Surface* s : { &r, &m })
-  {
-    s->tree.insert(s->triangles.begin(), s->triangles.end());
-    s->tree.build();
-    s->tree.accelerate_distance_queries();
-  }
-  progress.report(built);
-
-  const OneSided forward = measure(mesh, m, r, options.seed, floor,
-    options.perPointDistance ? &result.pointDistance : nullptr, progress.sub(built, split));
-  const OneSided backward =
-    measure(reference, r, m, options.seed, floor, nullptr, progress.sub(split, 1.0));
-
+/// The symmetric figures from the two one-sided ones, weighted by the areas.
+void combine(const OneSided& forward, const OneSided& backward, const Surface& m, const Surface& r,
+  SurfaceDistanceResult& result)
+{
   result.forwardMax = forward.max;
   result.forwardMean = forward.mean;
   result.forwardRms = forward.rms;
@@ -368,6 +372,58 @@ SurfaceDistanceResult surfaceDistance(const TriMesh& mesh, const TriMesh& refere
   result.rmsDistance = std::sqrt(
     (m.totalArea * forward.rms * forward.rms + r.totalArea * backward.rms * backward.rms) / total);
   result.samples = m.vertexSamples + m.areaSamples + r.vertexSamples + r.areaSamples;
+}
+} // namespace
+
+SurfaceDistanceResult surfaceDistance(const TriMesh& mesh, const TriMesh& reference,
+  const SurfaceDistanceOptions& options, const Progress& progress)
+{
+  // 1. Valid meshes and options.
+  validate(mesh, "mesh");
+  validate(reference, "reference");
+  if (options.samplesPerMesh < 0 || options.samplesPerMesh > kMaxSamples)
+  {
+    throw InputError("surfaceDistance: samplesPerMesh is " +
+      std::to_string(options.samplesPerMesh) +
+      ": pass 0 (automatic) or a sample count of at most 10^12");
+  }
+  progress.report(0.0);
+
+  // 2. Areas, used points and samples per triangle of each mesh.
+  Surface m, r;
+  prepare(m, mesh, "mesh");
+  prepare(r, reference, "reference");
+  auto target = [&options](int64_t triangles)
+  {
+    return options.samplesPerMesh > 0
+      ? options.samplesPerMesh
+      : std::min(kMaxAutoSamples, std::max(kMinAutoSamples, kAutoSamplesPerTriangle * triangles));
+  };
+  allocateSamples(m, target(mesh.numTriangles()));
+  allocateSamples(r, target(reference.numTriangles()));
+  SurfaceDistanceResult result;
+  result.diagonal = boxDiagonal(reference);
+  const double floor = noiseFloor(mesh, reference);
+
+  // 3. The AABB trees. Building them takes a few percent of the time; it cannot be interrupted.
+  const double forwardWork = static_cast<double>(m.vertexSamples + m.areaSamples);
+  const double backwardWork = static_cast<double>(r.vertexSamples + r.areaSamples);
+  const double built = 0.05;
+  const double split = built + (1.0 - built) * forwardWork / (forwardWork + backwardWork);
+  for (Surface* s : { &r, &m })
+  {
+    s->tree.insert(s->triangles.begin(), s->triangles.end());
+    s->tree.build();
+    s->tree.accelerate_distance_queries();
+  }
+  progress.report(built);
+
+  // 4. Both directions, then the symmetric figures.
+  const OneSided forward = measure(mesh, m, r, options.seed, floor,
+    options.perPointDistance ? &result.pointDistance : nullptr, progress.sub(built, split));
+  const OneSided backward =
+    measure(reference, r, m, options.seed, floor, nullptr, progress.sub(split, 1.0));
+  combine(forward, backward, m, r, result);
   return result;
 }
 } // namespace tc

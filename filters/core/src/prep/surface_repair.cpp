@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "prep/surface_repair.h"
 
+#include "detail/geometry2d.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
@@ -52,10 +54,10 @@ bool toSurface(const TriMesh& mesh, Surface& surface)
 /// with both thresholds turned once into what the test compares.
 struct SliverTest
 {
-  double capCosine;  ///< cosine of the largest angle a triangle may have
-  double ratio2;     ///< squared largest ratio of longest to shortest side
+  double capCosine; ///< cosine of the largest angle a triangle may have
+  double ratio2;    ///< squared largest ratio of longest to shortest side
   SliverTest(double maxAngleDegrees, double maxEdgeRatio)
-    : capCosine(std::cos(maxAngleDegrees * 3.14159265358979323846 / 180.0))
+    : capCosine(std::cos(maxAngleDegrees * detail::kPi / 180.0))
     , ratio2(maxEdgeRatio * maxEdgeRatio)
   {
   }
@@ -95,6 +97,52 @@ struct SliverTest
     return n;
   }
 };
+
+/// One border half-edge per boundary loop, in the order of the half-edges, and the number of
+/// edges of each loop.
+void borderLoops(const Surface& surface, std::vector<Surface::Halfedge_index>& loops,
+  std::vector<int64_t>& loopEdges)
+{
+  std::vector<uint8_t> seen(surface.number_of_halfedges(), 0);
+  for (const Surface::Halfedge_index h : surface.halfedges())
+  {
+    if (!surface.is_border(h) || seen[h.idx()])
+    {
+      continue;
+    }
+    int64_t edges = 0;
+    Surface::Halfedge_index g = h;
+    do
+    {
+      seen[g.idx()] = 1;
+      ++edges;
+      g = surface.next(g);
+    } while (g != h);
+    loops.push_back(h);
+    loopEdges.push_back(edges);
+  }
+}
+
+/// Appends to `mesh` the points CGAL added to `surface` after its first nv, in the order it
+/// added them, and the triangles `faces`, in the order of their holes.
+void appendPatches(
+  const Surface& surface, int64_t nv, const std::vector<Surface::Face_index>& faces, TriMesh& mesh)
+{
+  const int64_t total = static_cast<int64_t>(surface.number_of_vertices());
+  for (int64_t v = nv; v < total; ++v)
+  {
+    const Kernel::Point_3& p =
+      surface.point(Surface::Vertex_index(static_cast<Surface::size_type>(v)));
+    mesh.points.insert(mesh.points.end(), { p.x(), p.y(), p.z() });
+  }
+  for (const Surface::Face_index f : faces)
+  {
+    for (const Surface::Vertex_index v : surface.vertices_around_face(surface.halfedge(f)))
+    {
+      mesh.triangles.push_back(static_cast<int32_t>(v.idx()));
+    }
+  }
+}
 } // namespace
 
 HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress)
@@ -109,30 +157,9 @@ HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress)
     progress.report(1.0);
     return out;
   }
-
-  // One border half-edge per boundary loop, in the order of the half-edges.
   std::vector<Surface::Halfedge_index> loops;
   std::vector<int64_t> loopEdges;
-  {
-    std::vector<uint8_t> seen(surface.number_of_halfedges(), 0);
-    for (const Surface::Halfedge_index h : surface.halfedges())
-    {
-      if (!surface.is_border(h) || seen[h.idx()])
-      {
-        continue;
-      }
-      int64_t edges = 0;
-      Surface::Halfedge_index g = h;
-      do
-      {
-        seen[g.idx()] = 1;
-        ++edges;
-        g = surface.next(g);
-      } while (g != h);
-      loops.push_back(h);
-      loopEdges.push_back(edges);
-    }
-  }
+  borderLoops(surface, loops, loopEdges);
 
   std::vector<Surface::Face_index> faces;
   std::vector<Surface::Vertex_index> vertices;
@@ -156,23 +183,8 @@ HoleFilling fillHoles(TriMesh& mesh, int64_t maxEdges, const Progress& progress)
     out.unfairedHoles += faired ? 0 : 1;
   }
 
-  // New points keep the order CGAL added them in (after the input's), new faces the order of
-  // their holes.
-  const int64_t total = static_cast<int64_t>(surface.number_of_vertices());
-  for (int64_t v = nv; v < total; ++v)
-  {
-    const Kernel::Point_3& p =
-      surface.point(Surface::Vertex_index(static_cast<Surface::size_type>(v)));
-    mesh.points.insert(mesh.points.end(), { p.x(), p.y(), p.z() });
-  }
-  for (const Surface::Face_index f : faces)
-  {
-    for (const Surface::Vertex_index v : surface.vertices_around_face(surface.halfedge(f)))
-    {
-      mesh.triangles.push_back(static_cast<int32_t>(v.idx()));
-    }
-  }
-  out.addedPoints = total - nv;
+  appendPatches(surface, nv, faces, mesh);
+  out.addedPoints = mesh.numPoints() - nv;
   out.addedTriangles = static_cast<int64_t>(faces.size());
   progress.report(1.0);
   return out;
@@ -199,8 +211,7 @@ SliverRemoval removeSlivers(
   }
   progress.report(0.2);
   // CGAL's cap threshold is the cosine of the largest angle; no length limit on collapses.
-  PMP::experimental::remove_almost_degenerate_faces(
-    surface, sliver.capCosine, maxEdgeRatio, 0.0);
+  PMP::experimental::remove_almost_degenerate_faces(surface, sliver.capCosine, maxEdgeRatio, 0.0);
   progress.report(0.8);
 
   // Removed elements stay as holes in Surface_mesh's index ranges until collect_garbage, which

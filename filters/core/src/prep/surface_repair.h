@@ -59,8 +59,8 @@ struct SliverRemoval
 ///   is left unchanged and SliverRemoval::nonManifold is set
 /// @param[in] maxAngleDegrees  caps: largest angle above this (PreparationOptions::sliverAngle)
 /// @param[in] maxEdgeRatio     needles: longest side over shortest above this
-SliverRemoval removeSlivers(TriMesh& mesh, double maxAngleDegrees, double maxEdgeRatio,
-  const Progress& progress = {});
+SliverRemoval removeSlivers(
+  TriMesh& mesh, double maxAngleDegrees, double maxEdgeRatio, const Progress& progress = {});
 struct FragmentRemoval
 {
   std::vector<int32_t> keptPoints;    ///< #V' old index of every point kept, ascending

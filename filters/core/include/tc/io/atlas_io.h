@@ -1,46 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file atlas_io.h
 /// The atlas file: a tc::Atlas (atlas.h) as one OpenEXR multi-part file, read back bit for bit.
-///
-/// Layout (format "TriChart atlas", version 3):
-/// - one scan-line part per attribute a and image k, named "<attribute name>.<k>" (e.g.
-///   "Position.0", "Normal.2"), the coarsest image first (image K - 1 (all attributes), then
-///   K - 2, ... 0), so that a file read front to back refines; every part shares the display
-///   window of the largest image, as OpenEXR requires of multi-part files;
-/// - one FLOAT channel per component, lossless ZIP compression; channel names by component
-///   count: 3 -> X, Y, Z; 1, 2, 4 -> R; R, G; R, G, B, A; any other count n -> C0 .. C(n-1);
-/// - an image whose metadata says "texels": "new" is stored compactly. Its texels are of three
-///   kinds: sample (i, j), both even, of a chart at level d >= 1 repeats sample (i/2, j/2) of
-///   level d - 1 in image k + 1 (the point-sampled pyramid, "every other sample"), and is not
-///   stored; a texel no chart covers is 0 and is not stored; every other chart sample is new.
-///   The part holds the new texels in texel order (row y = 0, 1, ..., x = 0, 1, ... within a
-///   row), filling rows of the image's width one after the other, the last row completed with
-///   zeros: its data window is (0, 0) .. (width - 1, ceil(new texels / width) - 1), at least one
-///   row. A reader rebuilds the images coarsest first. The writer stores an image this way
-///   whenever its texels allow it, which the pipeline's atlases always do; the coarser images
-///   then cost no bytes, a quarter of the texels of the finer ones;
-/// - an image whose metadata says "texels": "all" is stored whole: the part's data window is
-///   (0, 0) .. (width - 1, height - 1) of image k and EXR scan line y is atlas row y (no flip:
-///   texel (x, y) of atlas.h is pixel (x, y) of the part);
-/// - the metadata is UTF-8 JSON with "format": "TriChart atlas", "version": 3, "source",
-///   "inputPoints", "inputTriangles", "inputDiagonal", "attributes": [{"name", "components"}],
-///   "images": [{"width", "height", "texels", "crc32": [one per attribute]}] and "charts":
-///   [{every AtlasChart field under its C++ name}]. The first part's header holds it as three
-///   attributes: the string attribute "trichartAtlasZ", the JSON text compressed by zlib
-///   (RFC 1950 stream, best compression; the string holds these raw bytes, NULs included), the
-///   int attribute "trichartAtlasLength", the byte length of the JSON text, and the int
-///   attribute "trichartAtlasCrc32", the CRC-32 of the JSON text.
-///
-/// Versions 1 and 2, which readAtlas still reads, store every image whole (no "texels" entry,
-/// parts in the order image 0, 1, ...). Version 2 differs from version 3 in nothing else;
-/// version 1 has "version": 1 and the plain JSON text in the string attribute "trichartAtlas"
-/// (with "trichartAtlasCrc32"; no length attribute).
-///
-/// Doubles are JSON numbers that read back to the same bits (-0.0 included); +-infinity, which
-/// JSON cannot hold, is written as the string "inf" / "-inf". The CRC-32 (zlib) of every image's
-/// float data per attribute (all its texels as atlas.h lays them out, little-endian bytes,
-/// whether its part is compact or whole) and of the JSON catch damage that OpenEXR cannot see
-/// (chunks that ZIP left uncompressed, digits in the metadata).
+/// A part per attribute and image (coarsest first, a finer image storing only the samples the
+/// coarser ones lack), 32-bit float channels, and a zlib-compressed JSON chart table with
+/// CRC-32 checksums of the table and of every image. docs/atlas-format.md describes the format
+/// (version 3, and the versions 1 and 2 it still reads), how the reader validates a file and
+/// how the writer replaces one. OpenEXR because it stores float32 images losslessly and any
+/// image tool opens them.
 #pragma once
 
 #include "tc/gim/atlas.h"

@@ -35,10 +35,10 @@ struct PreparationOptions
   /// Remove slivers, last (after hole filling): collapse the shortest edge of each needle
   /// (longest side over shortest above sliverEdgeRatio) into the endpoint that changes the volume
   /// least, flip the longest edge of each cap (an angle above sliverAngle), wherever that keeps
-  /// the topology and folds no triangle (CGAL's remove_almost_degenerate_faces). Scans often
-  /// have thousands: the base complex keeps them (a collapse may make triangles as thin as the
-  /// ones it removes) and the paths cannot be traced through its near-flat stars. No point
-  /// moves; collapsed points are dropped. Needs a manifold mesh (splitNonManifold).
+  /// the topology and folds no triangle (CGAL's remove_almost_degenerate_faces). Why: the base
+  /// complex keeps slivers (a collapse may make triangles as thin as the ones it removes), and
+  /// the paths cannot be traced through their near-flat stars. No point moves; collapsed points
+  /// are dropped. Needs a manifold mesh (splitNonManifold).
   bool removeSlivers = false;
   double sliverAngle = 170.0;    ///< degrees, 120 .. 180: a larger angle makes a cap
   double sliverEdgeRatio = 10.0; ///< >= 3: a larger ratio of longest to shortest side, a needle
@@ -120,14 +120,14 @@ bool closedManifold(const PreparationReport& report, const PreparationOptions& o
 /// closedManifold() holds. Every face (CLI, Python, viewer) shows this text.
 std::string closedManifoldRepairs(const PreparationReport& report, const PreparationOptions& options);
 
-/// Cleans a polygon soup into a triangle mesh, in this order: validate; merge duplicate points;
-/// triangulate polygons (ear clipping in the plane of the Newell normal); drop degenerate and
-/// duplicate triangles; find non-manifold edges and vertices (and split them if asked); orient;
-/// fill holes (if asked) and orient again; remove slivers (if asked); count boundary edges and
-/// components. Output points
-/// keep the input order (split copies, then hole-filling points are appended); output
-/// triangles keep the polygon order (hole-filling triangles appended; sliver removal only drops
-/// points and triangles). Deterministic.
+/// Cleans a polygon soup into a triangle mesh, in this order: (1) validate; (2) merge duplicate
+/// points; (3) triangulate polygons (ear clipping in the plane of the Newell normal) and drop
+/// degenerate triangles; (4) drop duplicate triangles; (5) drop unused points; (6) find
+/// non-manifold edges and vertices and (7) split them if asked; (8) orient; (9) fill holes (if
+/// asked) and orient again; (10) remove slivers (if asked); (11) count boundary edges and
+/// components. Output points keep the input order (split copies, then hole-filling points are
+/// appended); output triangles keep the polygon order (hole-filling triangles appended; sliver
+/// removal only drops points and triangles). Deterministic.
 ///
 /// @param[in] soup      #V points, #P polygons with ids in [0, #V)
 /// @param[in] options   see PreparationOptions
