@@ -4,7 +4,7 @@
 #include "tc/common/errors.h"
 #include "tc/common/parallel.h"
 
-#include "common/splitmix.h"
+#include "detail/splitmix.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

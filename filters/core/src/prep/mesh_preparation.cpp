@@ -10,7 +10,7 @@
 #include "prep/report_text.h"
 #include "prep/surface_repair.h"
 
-#include "common/splitmix.h"
+#include "detail/splitmix.h"
 #include "tc/common/errors.h"
 #include "tc/common/mesh_topology.h"
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "prep/point_merging.h"
 
-#include "common/splitmix.h"
+#include "detail/splitmix.h"
 #include "prep/first_equal.h"
 #include "prep/points.h"
 
