@@ -25,15 +25,13 @@ struct BaseComplexOptions
   /// Also stop before a collapse whose quadric error exceeds this fraction of the squared
   /// bounding-box diagonal (0: no error bound, only targetFaces). The error of a collapse is the
   /// mean squared distance of the kept vertex to the planes of the surface merged into it (the
-  /// Garland-Heckbert quadric over the area it covers); collapses above the bound are never made.
-  /// The default, 1e-4, keeps every base triangle within about 1% of the diagonal (RMS) of its
-  /// surface. Without it, where feature curves block collapses (their vertices cannot leave the
-  /// curve), the count target is met by collapsing the smooth regions into huge triangles: on
-  /// bunny_glmark2 the base complex then has 300 faces whose worst deviates by 14.5% of the
-  /// diagonal, against 702 faces and 3.5% with the bound, and every level of the geometry images
-  /// is better for it (finest Hausdorff 0.35% -> 0.24%). The bound stops nothing while the base
-  /// complex has more than one face per 32 input points, so that a coarse input (the bundled
-  /// 3.7K-triangle bunny) still gets charts large enough to sample.
+  /// Garland-Heckbert quadric over the area it covers); collapses above the bound are never made,
+  /// so the default, 1e-4, keeps every base triangle within about 1% of the diagonal (RMS) of
+  /// its surface. Why a bound: where feature curves block collapses (their vertices cannot leave
+  /// the curve), the count target alone is met by collapsing the smooth regions into huge
+  /// triangles that deviate far from their surface, and every level of the geometry images is
+  /// worse for it. The bound stops nothing while the base complex has more than one face per 32
+  /// input points, so that a coarse input still gets charts large enough to sample.
   double maxError = 1e-4;
   /// Shape bound on the triangles a collapse creates, as 4 sqrt(3) area / (sum of squared
   /// sides) (1 equilateral, 0 degenerate; 0.1 is a smallest angle of about 5 degrees). Relative
@@ -48,8 +46,8 @@ struct BaseComplexOptions
   double featureWeight = 1.0;
   /// Check every collapse for input triangles it would fold or stretch across the base complex
   /// (see BaseComplexResult::invalidTriangles) and reject it if so. This keeps the map a
-  /// bijection at every level; turned off, simplification is several times faster (about 6x on
-  /// a 75K-triangle scan) and folds are only repaired at the end, where some may remain.
+  /// bijection at every level; turned off, simplification is several times faster and folds are
+  /// only repaired at the end, where some may remain.
   bool checkBijection = true;
 };
 
@@ -77,10 +75,16 @@ struct BaseComplexResult
   int64_t invalidTriangles = 0;
 };
 
+/// Simplifies `mesh` into its base complex and parameterizes every input vertex over it
+/// (section 5.1). Deterministic: ties are broken by input ids, so equal inputs give equal bits.
 /// @param[in] mesh           #V x 3 points, #F x 3 triangles: closed, manifold, oriented
 /// @param[in] featureVertex  #V 1 on a feature curve (may be empty: no features)
 /// @param[in] cornerVertex   #V 1 at a corner (never removed; may be empty)
 /// @param[in] featureEdges   #E x 2 vertex ids of the mesh edges that make the feature curves
+/// @param[in] options        when to stop and which collapses to refuse (BaseComplexOptions)
+/// @param[in] progress       fraction done (set-up, collapses, flip repair); abort throws
+///                           tc::Aborted
+/// @return the base complex in input vertex ids and the parameterization (BaseComplexResult)
 /// @throws InputError for a mesh that is not a closed oriented manifold, or arrays that do not
 ///         match it; the message says what to fix (e.g. split non-manifold vertices in
 ///         tcMeshPreparation)
