@@ -4,7 +4,7 @@
  * @brief Writes the pipeline's atlas multiblock (tcGeometryImages' output) as one OpenEXR
  * multi-part file: float32 images, one part per attribute and mip step (coarsest first, each
  * holding only the samples that the coarser steps do not), and the chart table as
- * zlib-compressed JSON in the header; tc/atlas_io.h documents the layout.
+ * zlib-compressed JSON in the header; docs/atlas-format.md documents the layout.
  *
  * The file is written to a temporary name in the same folder and renamed at the end, so a
  * failed or aborted write never leaves a half-written atlas (and keeps an older file intact).
