@@ -252,7 +252,7 @@ void Tracer::route(int32_t h, int choice, Route& r) const
 /// Stars that decide on which side the segment passes a base vertex it comes close to: those of
 /// a base vertex at the third corner of a triangle of h's edge (the first napex, ascending), then
 /// those of a base vertex with weight 1/2 or more at either end, heaviest first. Returns how many.
-int Tracer::nearStars(
+inline int Tracer::nearStars(
   int32_t h, const Support& su, const Support& sv, int32_t stars[8], int& napex) const
 {
   int n = 0;
@@ -287,7 +287,7 @@ int Tracer::nearStars(
 
 /// The star charts of stars[0 .. n), each without then with the faces outside it; true once the
 /// choice-th chart that holds the segment is found (in r).
-bool Tracer::tryStars(
+inline bool Tracer::tryStars(
   const Support& su, const Support& sv, const int32_t* stars, int n, int& choice, Route& r) const
 {
   for (int i = 0; i < n; ++i)
@@ -305,7 +305,8 @@ bool Tracer::tryStars(
 
 /// Two faces unfolded about their common edge: each base face that holds the image of u (the
 /// lower end) with each of its sides; true once the choice-th chart is found.
-bool Tracer::tryHinges(int32_t u, const Support& su, const Support& sv, int& choice, Route& r) const
+inline bool Tracer::tryHinges(
+  int32_t u, const Support& su, const Support& sv, int& choice, Route& r) const
 {
   int32_t faces[64];
   int nf = 0;
@@ -344,8 +345,8 @@ bool Tracer::tryHinges(int32_t u, const Support& su, const Support& sv, int& cho
 /// The other stars, lowest vertex first, all without the faces outside them, then all with
 /// them: those of one of the images' base vertices or of a neighbour of u's, except those in
 /// tried[0 .. ntried); true once the choice-th chart is found.
-bool Tracer::tryOtherStars(const Support& su, const Support& sv, const int32_t* tried, int ntried,
-  int& choice, Route& r) const
+inline bool Tracer::tryOtherStars(const Support& su, const Support& sv, const int32_t* tried,
+  int ntried, int& choice, Route& r) const
 {
   int32_t centres[128];
   int nc = 0;
@@ -384,7 +385,8 @@ bool Tracer::tryOtherStars(const Support& su, const Support& sv, const int32_t* 
 
 /// Route through base face f (holding u) and the face across its side k (holding v), unfolded
 /// into the plane (Feng et al. Fig. 9): one crossing, if the segment meets that side.
-bool Tracer::hingeRoute(const Support& su, const Support& sv, int32_t f, int k, Route& r) const
+inline bool Tracer::hingeRoute(
+  const Support& su, const Support& sv, int32_t f, int k, Route& r) const
 {
   const std::vector<int32_t>& bt = Base_.baseTriangles;
   const int32_t x = bt[3 * f + k], y = bt[3 * f + (k + 1) % 3], c = bt[3 * f + (k + 2) % 3];
@@ -486,8 +488,8 @@ bool Tracer::starRoute(
 /// from placed face to placed face across their common sides, each crossing into r.c. True (r a
 /// kCrossing route) if it reaches a placed face that holds the end, through sides only, after at
 /// least one crossing; false if it passes through a corner, leaves the chart or turns back.
-bool Tracer::walkStar(const PlacedFaces& chart, int start, int end, const Support& sv, const P2& p,
-  const P2& q, Route& r) const
+inline bool Tracer::walkStar(const PlacedFaces& chart, int start, int end, const Support& sv,
+  const P2& p, const P2& q, Route& r) const
 {
   int32_t c[3];
   P2 at[3];

@@ -283,7 +283,7 @@ void Tracer::split(int32_t f, Pieces& out) const
 /// The boundary of f, counter-clockwise, from the routes of its sides: each corner with the
 /// transitions it spans, then the crossings of the side after it. False (out.error set) where a
 /// corner and its sides disagree.
-bool Tracer::traceBoundary(int32_t f, const Route routes[3], Boundary& b, Pieces& out) const
+inline bool Tracer::traceBoundary(int32_t f, const Route routes[3], Boundary& b, Pieces& out) const
 {
   for (int i = 0; i < 3; ++i)
   {
@@ -299,7 +299,8 @@ bool Tracer::traceBoundary(int32_t f, const Route routes[3], Boundary& b, Pieces
 
 /// Corner c, entered from base face `in` (the side before it) and left into `outFace` (the side
 /// after it), with the transitions between those faces round its image.
-bool Tracer::addCorner(int32_t c, int32_t in, int32_t outFace, Boundary& b, Pieces& out) const
+inline bool Tracer::addCorner(
+  int32_t c, int32_t in, int32_t outFace, Boundary& b, Pieces& out) const
 {
   const Support s = this->support(c);
   if (s.n == 3)
@@ -352,7 +353,7 @@ bool Tracer::addCorner(int32_t c, int32_t in, int32_t outFace, Boundary& b, Piec
 
 /// The crossings of side h (route r, from its start to its end) as Steiner points of the
 /// boundary; those of the side whose lower half-edge is h also go to out.cuts.
-bool Tracer::addSide(int32_t h, const Route& r, Boundary& b, Pieces& out) const
+inline bool Tracer::addSide(int32_t h, const Route& r, Boundary& b, Pieces& out) const
 {
   const int32_t key = this->lowerHalfEdge(h);
   const int32_t lo = this->lower(h), hi = this->upper(h);
@@ -381,7 +382,7 @@ bool Tracer::addSide(int32_t h, const Route& r, Boundary& b, Pieces& out) const
 }
 
 /// The cuts of an owned side are kept from the lower vertex to the higher.
-void Tracer::orderCuts(int32_t f, Pieces& out) const
+inline void Tracer::orderCuts(int32_t f, Pieces& out) const
 {
   for (int i = 0; i < 3; ++i)
   {

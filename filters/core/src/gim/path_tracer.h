@@ -3,8 +3,8 @@
 /// The path tracer behind tracePaths (tc/gim/path_tracing.h), private to the core: the class
 /// Tracer and the small types its steps share. Its steps live in their own files:
 ///   path_tracing.cpp  tracePaths and Tracer::run, the steps in order; which triangles are cut
-///   path_input.cpp    the input checked, the images of its vertices, its half-edge twins
-///   path_charts.cpp   the base edges and the star charts of the base vertices
+///   path_input.cpp    the input checked and read: the images of the mesh's vertices, its
+///                     half-edge twins, the base edges and the star charts of the base vertices
 ///   path_route.cpp    the route of an input edge over the base complex (step 1 below)
 ///   path_split.cpp    an input triangle cut along the base edges (step 2)
 ///   path_output.cpp   Steiner points, paths chained (step 3), output triangles
@@ -240,7 +240,7 @@ private:
   void checkFans(const std::vector<int32_t>& offsets, const std::vector<int32_t>& outgoing,
     const Progress& progress) const;
 
-  // The base complex (path_charts.cpp).
+  // The base complex (path_input.cpp).
   void buildBase();
   void sortDirectedBase();
   void listBaseEdges();
@@ -248,19 +248,23 @@ private:
   void walkRing(int32_t s, int32_t faces, StarChart& star) const;
   void unfoldOuterFaces(int32_t s, StarChart& star) const;
 
-  // Routes (path_route.cpp).
+  // Routes (path_route.cpp). The helpers of route() and split() marked inline are defined and
+  // called in one file only: inline lets the compiler inline them there (a plain member of this
+  // library, built as position-independent code with every symbol exported, could be interposed
+  // at load time, so the compiler never inlines it).
   bool direct(const Support& su, const Support& sv, Route& r) const;
   void route(int32_t h, int choice, Route& r) const;
-  int nearStars(
+  inline int nearStars(
     int32_t h, const Support& su, const Support& sv, int32_t stars[8], int& napex) const;
-  bool tryStars(
+  inline bool tryStars(
     const Support& su, const Support& sv, const int32_t* stars, int n, int& choice, Route& r) const;
-  bool tryHinges(int32_t u, const Support& su, const Support& sv, int& choice, Route& r) const;
-  bool tryOtherStars(const Support& su, const Support& sv, const int32_t* tried, int ntried,
+  inline bool tryHinges(
+    int32_t u, const Support& su, const Support& sv, int& choice, Route& r) const;
+  inline bool tryOtherStars(const Support& su, const Support& sv, const int32_t* tried, int ntried,
     int& choice, Route& r) const;
-  bool hingeRoute(const Support& su, const Support& sv, int32_t f, int k, Route& r) const;
+  inline bool hingeRoute(const Support& su, const Support& sv, int32_t f, int k, Route& r) const;
   bool starRoute(const Support& su, const Support& sv, int32_t s, bool outside, Route& r) const;
-  bool walkStar(const PlacedFaces& chart, int start, int end, const Support& sv, const P2& p,
+  inline bool walkStar(const PlacedFaces& chart, int start, int end, const Support& sv, const P2& p,
     const P2& q, Route& r) const;
   void routeOf(int32_t h, Route& r) const;
 
@@ -270,10 +274,10 @@ private:
   void cutTriangles(const Progress& progress);
   int32_t commonFace(int32_t f) const;
   void split(int32_t f, Pieces& out) const;
-  bool traceBoundary(int32_t f, const Route routes[3], Boundary& b, Pieces& out) const;
-  bool addCorner(int32_t c, int32_t in, int32_t outFace, Boundary& b, Pieces& out) const;
-  bool addSide(int32_t h, const Route& r, Boundary& b, Pieces& out) const;
-  void orderCuts(int32_t f, Pieces& out) const;
+  inline bool traceBoundary(int32_t f, const Route routes[3], Boundary& b, Pieces& out) const;
+  inline bool addCorner(int32_t c, int32_t in, int32_t outFace, Boundary& b, Pieces& out) const;
+  inline bool addSide(int32_t h, const Route& r, Boundary& b, Pieces& out) const;
+  inline void orderCuts(int32_t f, Pieces& out) const;
   bool repair(int32_t f, int32_t keep, int depth, std::vector<int32_t>& changed);
 
   // The output (path_output.cpp).

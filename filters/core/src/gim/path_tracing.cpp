@@ -98,7 +98,8 @@ void Tracer::findWholeTriangles(const Progress& progress)
 void Tracer::cutTriangles(const Progress& progress)
 {
   Choice_.assign(3 * static_cast<size_t>(NF_), 0);
-  Pieces_.assign(Cut_.size(), Pieces());
+  Pieces_.clear();
+  Pieces_.resize(Cut_.size());
   tc::parallel_for(
     static_cast<int64_t>(Cut_.size()), [&](int64_t i) { this->split(Cut_[i], Pieces_[i]); },
     progress);
