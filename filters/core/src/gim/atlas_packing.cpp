@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "gim/atlas_packing.h"
 
-#include "gim/geometry_images_input.h"
-#include "tc/common/parallel.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -172,40 +169,31 @@ void packAtlas(const std::vector<int32_t>& level, const SampleLayout& S, Atlas& 
   }
 }
 
-void writeImages(const std::vector<ChartGrid>& grids, const SampleLayout& S, Atlas& atlas,
-  const Progress& progress)
+void writeChartImages(const ChartGrid& g, const SampleLayout& S, int32_t c, Atlas& atlas)
 {
-  const int32_t nc = static_cast<int32_t>(atlas.charts.size());
   const int32_t numAttributes = static_cast<int32_t>(S.components.size());
-  parallel_for(
-    nc,
-    [&](int64_t c)
+  const AtlasChart& ch = atlas.charts[c];
+  for (int32_t k = 0; k <= ch.maxLevel; ++k)
+  {
+    const int32_t d = ch.maxLevel - k;
+    const int64_t nd = int64_t(1) << d;
+    AtlasImage& image = atlas.images[k];
+    for (int64_t j = 0; j <= nd; ++j)
     {
-      const AtlasChart& ch = atlas.charts[c];
-      const ChartGrid& g = grids[c];
-      for (int32_t k = 0; k <= ch.maxLevel; ++k)
+      for (int64_t i = 0; i + j <= nd; ++i)
       {
-        const int32_t d = ch.maxLevel - k;
-        const int64_t nd = int64_t(1) << d;
-        AtlasImage& image = atlas.images[k];
-        for (int64_t j = 0; j <= nd; ++j)
+        // Level d is the sampled grid at stride 2^(sampled - d): the point-sampled pyramid.
+        const float* src = g.at(d, i, j);
+        const std::array<int32_t, 2> xy =
+          atlasTexel(ch, d, static_cast<int32_t>(i), static_cast<int32_t>(j));
+        const size_t texel = static_cast<size_t>(xy[1]) * image.width + xy[0];
+        for (int32_t a = 0; a < numAttributes; ++a)
         {
-          for (int64_t i = 0; i + j <= nd; ++i)
-          {
-            // Level d is the sampled grid at stride 2^(sampled - d): the point-sampled pyramid.
-            const float* src = g.at(d, i, j);
-            const std::array<int32_t, 2> xy =
-              atlasTexel(ch, d, static_cast<int32_t>(i), static_cast<int32_t>(j));
-            const size_t texel = static_cast<size_t>(xy[1]) * image.width + xy[0];
-            for (int32_t a = 0; a < numAttributes; ++a)
-            {
-              std::copy(src + S.offset[a], src + S.offset[a] + S.components[a],
-                image.data[a].data() + texel * S.components[a]);
-            }
-          }
+          std::copy(src + S.offset[a], src + S.offset[a] + S.components[a],
+            image.data[a].data() + texel * S.components[a]);
         }
       }
-    },
-    progress, blockSteps(nc));
+    }
+  }
 }
 } // namespace tc::detail::geometry_images

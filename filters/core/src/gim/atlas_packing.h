@@ -8,7 +8,6 @@
 #pragma once
 
 #include "gim/chart_grid.h"
-#include "tc/common/progress.h"
 
 #include <cstdint>
 #include <vector>
@@ -20,8 +19,7 @@ namespace tc::detail::geometry_images
 /// allocated, zero. Every chart's maxLevel must be set (= level[c]).
 void packAtlas(const std::vector<int32_t>& level, const SampleLayout& S, Atlas& atlas);
 
-/// Copies every level d of every chart (grid c at stride 2^(grid level - d)) into its texels,
-/// in parallel over charts.
-void writeImages(const std::vector<ChartGrid>& grids, const SampleLayout& S, Atlas& atlas,
-  const Progress& progress);
+/// Copies every level d of chart c (grid g at stride 2^(grid level - d)) into its texels; charts
+/// own disjoint texels, so charts can be written in parallel.
+void writeChartImages(const ChartGrid& g, const SampleLayout& S, int32_t c, Atlas& atlas);
 } // namespace tc::detail::geometry_images

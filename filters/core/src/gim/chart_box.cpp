@@ -123,6 +123,22 @@ Box orientedBox(const std::vector<Vec3>& points, const std::vector<Vec3>* also =
 }
 } // namespace
 
+double inputDiagonal(const PatchMesh& patches)
+{
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  bool any = false;
+  for (int64_t v = 0; v < patches.mesh.numPoints(); ++v)
+  {
+    if (patches.inputPointId[v] >= 0)
+    {
+      lo = lo.cwiseMin(pointOf(patches.mesh, v));
+      hi = hi.cwiseMax(pointOf(patches.mesh, v));
+      any = true;
+    }
+  }
+  return any ? (hi - lo).norm() : 0.0;
+}
+
 double storageRounded(double x)
 {
   char text[32];

@@ -12,6 +12,10 @@
 
 namespace tc::detail::geometry_images
 {
+/// The bounding-box diagonal of the patch mesh's input points (inputPointId >= 0), 0 without
+/// any: the scale of the curvature weight and of the level rules' tolerance.
+double inputDiagonal(const PatchMesh& patches);
+
 /// `x` to 8 significant decimal digits: the chart table's doubles (box corners, level errors)
 /// feed estimates that the renderer evaluates in float (7.2 digits), and as the shortest decimal
 /// text that reads back to the same double they take half the atlas file's metadata bytes of

@@ -5,7 +5,6 @@
 #include "gim/chart_box.h"
 #include "gim/chart_grid.h"
 #include "gim/geometry_images_input.h"
-#include "gim/geometry_images_vec3.h"
 #include "gim/level_error.h"
 #include "gim/level_rule.h"
 #include "gim/patch_parameterization.h"
@@ -27,6 +26,13 @@ namespace tc::detail::geometry_images
 {
 namespace
 {
+/// Progress steps of a parallel loop over n patches, paths or charts: parallel_for runs its
+/// steps one after the other, so each must hold several items for both cores to work.
+int blockSteps(int64_t n)
+{
+  return static_cast<int>(std::clamp<int64_t>(n / 4, 1, 32));
+}
+
 /// The atlas's attributes (Position, Normal, then `extra`) and what it says of its input: the
 /// input points (inputPointId >= 0), their bounding-box diagonal, and largest inputTriangle + 1.
 Atlas emptyAtlas(const PatchMesh& patches, const std::vector<GeometryImageAttribute>& extra)
@@ -38,19 +44,11 @@ Atlas emptyAtlas(const PatchMesh& patches, const std::vector<GeometryImageAttrib
   {
     atlas.attributes.push_back({ x.name, x.components });
   }
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  bool any = false;
-  for (int64_t v = 0; v < patches.mesh.numPoints(); ++v)
+  for (int32_t id : patches.inputPointId)
   {
-    if (patches.inputPointId[v] >= 0)
-    {
-      ++atlas.inputPoints;
-      lo = lo.cwiseMin(pointOf(patches.mesh, v));
-      hi = hi.cwiseMax(pointOf(patches.mesh, v));
-      any = true;
-    }
+    atlas.inputPoints += id >= 0 ? 1 : 0;
   }
-  atlas.inputDiagonal = any ? (hi - lo).norm() : 0.0;
+  atlas.inputDiagonal = inputDiagonal(patches);
   int32_t maxTriangle = -1;
   for (int32_t t : patches.inputTriangle)
   {
@@ -121,6 +119,39 @@ void sampleCharts(const SamplingInput& in, const std::vector<PatchParameterizati
     progress, blockSteps(nc));
 }
 
+/// Step 3: every path sampled at the finer sampled level of its two charts, in parallel.
+std::vector<PathSamples> samplePaths(
+  const SamplingInput& in, const std::vector<int32_t>& sampled, const Progress& progress)
+{
+  const Layout& L = in.L;
+  std::vector<PathSamples> paths(L.numEdges);
+  parallel_for(
+    L.numEdges,
+    [&](int64_t e)
+    {
+      const int32_t level = std::max(sampled[L.edgeChart[2 * e]], sampled[L.edgeChart[2 * e + 1]]);
+      paths[e] = samplePath(in, static_cast<int32_t>(e), level);
+    },
+    progress, blockSteps(L.numEdges));
+  return paths;
+}
+
+/// Step 6, sides: every path that follows no feature curve fitted, in parallel.
+void fitSides(const SamplingInput& in, const std::vector<int32_t>& level,
+  const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids, const Progress& progress)
+{
+  parallel_for(
+    in.L.numEdges,
+    [&](int64_t e)
+    {
+      if (!in.L.edgeFeature[e])
+      {
+        fitSide(in, static_cast<int32_t>(e), level, paths, grids);
+      }
+    },
+    progress, blockSteps(in.L.numEdges));
+}
+
 /// Step 6, per chart: d_max, the interior fit (then the errors measured again, on the fitted
 /// samples), the box, and the chart table's doubles rounded for storage. In parallel.
 void finishCharts(const TriMesh& mesh, const std::vector<PatchParameterization>& param,
@@ -151,6 +182,15 @@ void finishCharts(const TriMesh& mesh, const std::vector<PatchParameterization>&
       }
     },
     progress, blockSteps(nc));
+}
+/// Step 7, texels: every level of every chart copied into its images, in parallel.
+void writeImages(const std::vector<ChartGrid>& grids, const SampleLayout& S, Atlas& atlas,
+  const Progress& progress)
+{
+  const int32_t nc = static_cast<int32_t>(atlas.charts.size());
+  parallel_for(
+    nc, [&](int64_t c) { writeChartImages(grids[c], S, static_cast<int32_t>(c), atlas); }, progress,
+    blockSteps(nc));
 }
 } // namespace
 } // namespace tc::detail::geometry_images

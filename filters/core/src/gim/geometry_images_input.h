@@ -25,13 +25,6 @@ inline std::string num(int64_t v)
   return std::to_string(v);
 }
 
-/// Progress steps of a parallel loop over n patches, paths or charts: parallel_for runs its
-/// steps one after the other, so each must hold several items for both cores to work.
-inline int blockSteps(int64_t n)
-{
-  return static_cast<int>(std::clamp<int64_t>(n / 4, 1, 32));
-}
-
 /// The checked input, with triangles grouped by patch and each base edge's two charts.
 struct Layout
 {

@@ -12,11 +12,6 @@
 
 namespace tc::detail::geometry_images
 {
-/// A_c of chart c: the sum over its triangles of area * (1 + curvatureWeight * |H| * diagonal),
-/// |H| the mean of |meanCurvature| at the corners (0 when meanCurvature is empty).
-double curvatureWeightedArea(const TriMesh& mesh, const Layout& L, int32_t c,
-  const std::vector<double>& meanCurvature, double curvatureWeight, double diagonal);
-
 /// Total samples over all charts at their finest level: options.sampleBudget, or with 0 as
 /// many as the input has points (at least what minLevel needs).
 /// @throws InputError for a budget below numCharts samples at minLevel

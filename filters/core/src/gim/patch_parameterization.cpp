@@ -524,6 +524,29 @@ PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult&
   countFlips(p);
   return p;
 }
+
+double curvatureWeightedArea(const TriMesh& mesh, const Layout& L, int32_t c,
+  const std::vector<double>& meanCurvature, double curvatureWeight, double diagonal)
+{
+  double sum = 0.0;
+  for (int64_t s = L.patchOffsets[c]; s < L.patchOffsets[c + 1]; ++s)
+  {
+    const int32_t* t = &mesh.triangles[3 * static_cast<int64_t>(L.patchTriangles[s])];
+    const double area = 0.5 *
+      (pointOf(mesh, t[1]) - pointOf(mesh, t[0]))
+        .cross(pointOf(mesh, t[2]) - pointOf(mesh, t[0]))
+        .norm();
+    double h = 0.0;
+    if (!meanCurvature.empty())
+    {
+      h = (std::abs(meanCurvature[t[0]]) + std::abs(meanCurvature[t[1]]) +
+            std::abs(meanCurvature[t[2]])) /
+        3.0;
+    }
+    sum += area * (1.0 + curvatureWeight * h * diagonal);
+  }
+  return sum;
+}
 } // namespace tc::detail::geometry_images
 
 namespace tc

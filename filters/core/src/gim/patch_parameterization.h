@@ -26,4 +26,10 @@ inline double uvArea2(const PatchParameterization& p, int64_t t)
 ///         system cannot be solved
 PatchParameterization parameterize(const PatchMesh& pm, const BaseComplexResult& base,
   const Layout& L, int32_t c, int32_t stretchIterations);
+
+/// A_c of chart c (its input to the area rule of level_rule.h): the sum over its triangles of area
+/// * (1 + curvatureWeight * |H| * diagonal), |H| the mean of |meanCurvature| at the corners (0 when
+/// meanCurvature is empty).
+double curvatureWeightedArea(const TriMesh& mesh, const Layout& L, int32_t c,
+  const std::vector<double>& meanCurvature, double curvatureWeight, double diagonal);
 } // namespace tc::detail::geometry_images

@@ -3,7 +3,6 @@
 
 #include "gim/geometry_images_vec3.h"
 #include "gim/uv_locator.h"
-#include "tc/common/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -181,26 +180,6 @@ void samplePathAt(const SamplingInput& in, int32_t e, const std::vector<double>&
   }
 }
 
-/// Path e sampled at 2^level + 1 dyadic arc-length fractions.
-PathSamples samplePath(const SamplingInput& in, int32_t e, int32_t level)
-{
-  const PatchMesh& pm = in.patches;
-  PathSamples ps;
-  ps.level = level;
-  const int64_t q1 = int64_t(1) << ps.level;
-  const int64_t p0 = pm.pathOffsets[e], p1 = pm.pathOffsets[e + 1];
-  const std::vector<double> arc = arcLengths(pm.mesh, &pm.pathPoints[p0], p1 - p0);
-  ps.segment.resize(q1 + 1);
-  ps.tau.resize(q1 + 1);
-  ps.values.resize((q1 + 1) * in.S.size);
-  const Vec3 endNormal[2] = { pathEndNormal(in, e, 0), pathEndNormal(in, e, 1) };
-  for (int64_t q = 0; q <= q1; ++q)
-  {
-    samplePathAt(in, e, arc, endNormal, q, ps);
-  }
-  return ps;
-}
-
 /// Normals of chart c's points: shared, except one-sided ones (from this patch's triangles
 /// only) on the sides that follow a feature curve and at corners on one, so the crease stays
 /// sharp. #Vp x 3.
@@ -337,20 +316,23 @@ std::vector<double> sharedNormals(
   return shared;
 }
 
-std::vector<PathSamples> samplePaths(
-  const SamplingInput& in, const std::vector<int32_t>& sampled, const Progress& progress)
+PathSamples samplePath(const SamplingInput& in, int32_t e, int32_t level)
 {
-  const Layout& L = in.L;
-  std::vector<PathSamples> paths(L.numEdges);
-  parallel_for(
-    L.numEdges,
-    [&](int64_t e)
-    {
-      const int32_t level = std::max(sampled[L.edgeChart[2 * e]], sampled[L.edgeChart[2 * e + 1]]);
-      paths[e] = samplePath(in, static_cast<int32_t>(e), level);
-    },
-    progress, blockSteps(L.numEdges));
-  return paths;
+  const PatchMesh& pm = in.patches;
+  PathSamples ps;
+  ps.level = level;
+  const int64_t q1 = int64_t(1) << ps.level;
+  const int64_t p0 = pm.pathOffsets[e], p1 = pm.pathOffsets[e + 1];
+  const std::vector<double> arc = arcLengths(pm.mesh, &pm.pathPoints[p0], p1 - p0);
+  ps.segment.resize(q1 + 1);
+  ps.tau.resize(q1 + 1);
+  ps.values.resize((q1 + 1) * in.S.size);
+  const Vec3 endNormal[2] = { pathEndNormal(in, e, 0), pathEndNormal(in, e, 1) };
+  for (int64_t q = 0; q <= q1; ++q)
+  {
+    samplePathAt(in, e, arc, endNormal, q, ps);
+  }
+  return ps;
 }
 
 ChartGrid sampleChartGrid(const SamplingInput& in, const PatchParameterization& p,

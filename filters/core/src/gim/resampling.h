@@ -9,7 +9,6 @@
 
 #include "gim/chart_grid.h"
 #include "gim/geometry_images_input.h"
-#include "tc/common/progress.h"
 
 #include <cstdint>
 #include <vector>
@@ -33,9 +32,9 @@ struct SamplingInput
 std::vector<double> sharedNormals(
   const TriMesh& mesh, const Layout& L, const std::vector<double>& normals);
 
-/// Every path sampled at the finer `sampled` level of its two charts, in parallel.
-std::vector<PathSamples> samplePaths(
-  const SamplingInput& in, const std::vector<int32_t>& sampled, const Progress& progress);
+/// Path e sampled at 2^level + 1 dyadic arc-length fractions, from its lower base vertex to its
+/// higher one (level: the finer sampled level of its two charts).
+PathSamples samplePath(const SamplingInput& in, int32_t e, int32_t level);
 
 /// The grid of chart c (table entry `chart`, parameterization p) at `level`: side samples copied
 /// from `paths` (one-sided normals along a feature side), interior samples interpolated.

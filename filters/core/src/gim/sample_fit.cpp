@@ -2,7 +2,6 @@
 #include "gim/sample_fit.h"
 
 #include "gim/geometry_images_vec3.h"
-#include "tc/common/parallel.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -295,7 +294,8 @@ void writeFittedSide(const SamplingInput& in, int32_t e, int slot, int32_t d,
   }
 }
 
-/// Fits path e (not a feature) at the lower level of its two charts and writes it into both.
+} // namespace
+
 void fitSide(const SamplingInput& in, int32_t e, const std::vector<int32_t>& level,
   const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids)
 {
@@ -320,22 +320,6 @@ void fitSide(const SamplingInput& in, int32_t e, const std::vector<int32_t>& lev
   {
     writeFittedSide(in, e, slot, d, fitted, level, grids);
   }
-}
-} // namespace
-
-void fitSides(const SamplingInput& in, const std::vector<int32_t>& level,
-  const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids, const Progress& progress)
-{
-  parallel_for(
-    in.L.numEdges,
-    [&](int64_t e)
-    {
-      if (!in.L.edgeFeature[e])
-      {
-        fitSide(in, static_cast<int32_t>(e), level, paths, grids);
-      }
-    },
-    progress, blockSteps(in.L.numEdges));
 }
 
 // The offsets delta minimize

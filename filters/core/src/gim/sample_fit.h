@@ -14,14 +14,14 @@
 
 namespace tc::detail::geometry_images
 {
-/// Fits the side samples of every path that follows no feature curve (a feature curve stays
-/// sampled on the curve, so the crease stays in place), in parallel over paths. A side is fitted
-/// at the lower level[] of its two charts, the finest level at which it is ever drawn, and
-/// written into both charts' grids; the finer chart's samples between those (drawn by no level:
-/// stitching moves them onto the coarser ones) are put on the straight line between them, so its
-/// interior is fitted against the side it is drawn with and its levelError measures that side.
-void fitSides(const SamplingInput& in, const std::vector<int32_t>& level,
-  const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids, const Progress& progress);
+/// Fits the side samples of path e, which follows no feature curve (a feature curve stays
+/// sampled on the curve, so the crease stays in place). A side is fitted at the lower level[] of
+/// its two charts, the finest level at which it is ever drawn, and written into both charts'
+/// grids; the finer chart's samples between those (drawn by no level: stitching moves them onto
+/// the coarser ones) are put on the straight line between them, so its interior is fitted
+/// against the side it is drawn with and its levelError measures that side.
+void fitSide(const SamplingInput& in, int32_t e, const std::vector<int32_t>& level,
+  const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids);
 
 /// Moves the interior samples of level d of a chart (grid g at stride g.n / 2^d) off the
 /// surface to fit it in the least-squares sense; side and corner samples stay. Writes back the
