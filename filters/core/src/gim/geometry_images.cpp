@@ -14,7 +14,6 @@
 #include "tc/common/parallel.h"
 
 #include <algorithm>
-#include <limits>
 #include <string>
 #include <vector>
 

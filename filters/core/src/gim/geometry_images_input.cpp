@@ -3,6 +3,7 @@
 
 #include "tc/common/errors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 

@@ -6,7 +6,6 @@
 
 #include "tc/gim/geometry_images.h"
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
