@@ -27,11 +27,9 @@ bool samePosition(const float* a, const float* b)
 {
   return std::memcmp(a, b, 3 * sizeof(float)) == 0;
 }
-} // namespace
-
-void validateAtlasLayout(const Atlas& atlas)
+/// Position and Normal first, then any others, each named once with 1 to 64 components.
+void checkAttributes(const Atlas& atlas)
 {
-  // Attributes: Position and Normal first, then any others, each named once.
   if (atlas.attributes.size() < 2 || atlas.attributes[0].name != kAtlasPosition ||
     atlas.attributes[0].components != 3 || atlas.attributes[1].name != kAtlasNormal ||
     atlas.attributes[1].components != 3)
@@ -53,12 +51,11 @@ void validateAtlasLayout(const Atlas& atlas)
       }
     }
   }
-  if (atlas.charts.empty())
-  {
-    fail("it has no chart");
-  }
+}
 
-  // Images: one per mip step, every attribute the right size.
+/// One image per mip step of the finest chart, each of a size a GPU texture can have.
+void checkImageSizes(const Atlas& atlas)
+{
   const int32_t maxLevel = atlas.maxLevel();
   if (maxLevel < 0 || maxLevel > 20)
   {
@@ -78,78 +75,89 @@ void validateAtlasLayout(const Atlas& atlas)
         std::to_string(image.height));
     }
   }
+}
 
-  // Charts: levels, origins inside their images, neighbours and partners that agree.
+/// Neighbours across the three sides of chart c that exist, name it back and run the shared
+/// side between the same base vertices the other way.
+void checkNeighbours(const Atlas& atlas, size_t c)
+{
   const size_t nc = atlas.charts.size();
-  for (size_t c = 0; c < nc; ++c)
+  const AtlasChart& chart = atlas.charts[c];
+  for (int k = 0; k < 3; ++k)
   {
-    const AtlasChart& chart = atlas.charts[c];
-    if (chart.maxLevel < 0 || chart.origin.size() != static_cast<size_t>(chart.maxLevel) + 1)
+    const int32_t nb = chart.neighborChart[k];
+    const int32_t ns = chart.neighborSide[k];
+    if (chart.cornerVertex[k] < 0)
     {
-      fail(chartName(c) + " needs one origin per level 0 .. maxLevel");
+      fail(chartName(c) + " has no base vertex at corner " + std::to_string(k));
     }
-    if (!chart.levelError.empty() &&
-      chart.levelError.size() != static_cast<size_t>(chart.maxLevel) + 1)
+    if (nb < 0 || static_cast<size_t>(nb) >= nc || static_cast<size_t>(nb) == c || ns < 0 || ns > 2)
     {
-      fail(chartName(c) + " has " + std::to_string(chart.levelError.size()) +
-        " level errors, expected none or " + std::to_string(chart.maxLevel + 1));
+      fail(chartName(c) + " side " + std::to_string(k) + " has no valid neighbour (the " +
+        "base complex must be closed)");
     }
-    for (int k = 0; k < 3; ++k)
+    const AtlasChart& other = atlas.charts[static_cast<size_t>(nb)];
+    if (other.neighborChart[ns] != static_cast<int32_t>(c) || other.neighborSide[ns] != k)
     {
-      const int32_t nb = chart.neighborChart[k];
-      const int32_t ns = chart.neighborSide[k];
-      if (chart.cornerVertex[k] < 0)
-      {
-        fail(chartName(c) + " has no base vertex at corner " + std::to_string(k));
-      }
-      if (nb < 0 || static_cast<size_t>(nb) >= nc || static_cast<size_t>(nb) == c || ns < 0 ||
-        ns > 2)
-      {
-        fail(chartName(c) + " side " + std::to_string(k) + " has no valid neighbour (the " +
-          "base complex must be closed)");
-      }
-      const AtlasChart& other = atlas.charts[static_cast<size_t>(nb)];
-      if (other.neighborChart[ns] != static_cast<int32_t>(c) || other.neighborSide[ns] != k)
-      {
-        fail(chartName(c) + " side " + std::to_string(k) + " and " + chartName(nb) + " side " +
-          std::to_string(ns) + " do not name each other as neighbours");
-      }
-      if (other.cornerVertex[ns] != chart.cornerVertex[(k + 1) % 3] ||
-        other.cornerVertex[(ns + 1) % 3] != chart.cornerVertex[k])
-      {
-        fail(chartName(c) + " side " + std::to_string(k) + " and " + chartName(nb) + " side " +
-          std::to_string(ns) + " do not run between the same base vertices the other way");
-      }
+      fail(chartName(c) + " side " + std::to_string(k) + " and " + chartName(nb) + " side " +
+        std::to_string(ns) + " do not name each other as neighbours");
     }
-    if (chart.partner >= 0)
+    if (other.cornerVertex[ns] != chart.cornerVertex[(k + 1) % 3] ||
+      other.cornerVertex[(ns + 1) % 3] != chart.cornerVertex[k])
     {
-      if (static_cast<size_t>(chart.partner) >= nc || static_cast<size_t>(chart.partner) == c ||
-        atlas.charts[static_cast<size_t>(chart.partner)].partner != static_cast<int32_t>(c) ||
-        atlas.charts[static_cast<size_t>(chart.partner)].rotated == chart.rotated)
-      {
-        fail(chartName(c) + " and its partner do not share a rectangle as a pair (one of the " +
-          "two rotated)");
-      }
+      fail(chartName(c) + " side " + std::to_string(k) + " and " + chartName(nb) + " side " +
+        std::to_string(ns) + " do not run between the same base vertices the other way");
     }
-    for (int32_t d = 0; d <= chart.maxLevel; ++d)
+  }
+}
+
+/// Chart c: levels and origins, neighbours and partner that agree, every level inside its image.
+void checkChartLayout(const Atlas& atlas, size_t c)
+{
+  const size_t nc = atlas.charts.size();
+  const AtlasChart& chart = atlas.charts[c];
+  if (chart.maxLevel < 0 || chart.origin.size() != static_cast<size_t>(chart.maxLevel) + 1)
+  {
+    fail(chartName(c) + " needs one origin per level 0 .. maxLevel");
+  }
+  if (!chart.levelError.empty() &&
+    chart.levelError.size() != static_cast<size_t>(chart.maxLevel) + 1)
+  {
+    fail(chartName(c) + " has " + std::to_string(chart.levelError.size()) +
+      " level errors, expected none or " + std::to_string(chart.maxLevel + 1));
+  }
+  checkNeighbours(atlas, c);
+  if (chart.partner >= 0)
+  {
+    if (static_cast<size_t>(chart.partner) >= nc || static_cast<size_t>(chart.partner) == c ||
+      atlas.charts[static_cast<size_t>(chart.partner)].partner != static_cast<int32_t>(c) ||
+      atlas.charts[static_cast<size_t>(chart.partner)].rotated == chart.rotated)
     {
-      const AtlasImage& image = atlas.images[static_cast<size_t>(chart.maxLevel - d)];
-      const int32_t n = 1 << d;
-      // The grid is the convex hull of its corners: corners inside means every sample inside.
-      for (const auto& ij : { std::array<int32_t, 2>{ 0, 0 }, std::array<int32_t, 2>{ n, 0 },
-             std::array<int32_t, 2>{ 0, n } })
+      fail(chartName(c) + " and its partner do not share a rectangle as a pair (one of the " +
+        "two rotated)");
+    }
+  }
+  for (int32_t d = 0; d <= chart.maxLevel; ++d)
+  {
+    const AtlasImage& image = atlas.images[static_cast<size_t>(chart.maxLevel - d)];
+    const int32_t n = 1 << d;
+    // The grid is the convex hull of its corners: corners inside means every sample inside.
+    for (const auto& ij : { std::array<int32_t, 2>{ 0, 0 }, std::array<int32_t, 2>{ n, 0 },
+           std::array<int32_t, 2>{ 0, n } })
+    {
+      const std::array<int32_t, 2> xy = atlasTexel(chart, d, ij[0], ij[1]);
+      if (xy[0] < 0 || xy[1] < 0 || xy[0] >= image.width || xy[1] >= image.height)
       {
-        const std::array<int32_t, 2> xy = atlasTexel(chart, d, ij[0], ij[1]);
-        if (xy[0] < 0 || xy[1] < 0 || xy[0] >= image.width || xy[1] >= image.height)
-        {
-          fail(chartName(c) + " level " + std::to_string(d) + " lies outside image " +
-            std::to_string(chart.maxLevel - d));
-        }
+        fail(chartName(c) + " level " + std::to_string(d) + " lies outside image " +
+          std::to_string(chart.maxLevel - d));
       }
     }
   }
+}
 
-  // No texel belongs to two charts.
+/// No texel belongs to two charts.
+void checkTexelOwners(const Atlas& atlas)
+{
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
     const AtlasImage& image = atlas.images[k];
@@ -171,10 +179,9 @@ void validateAtlasLayout(const Atlas& atlas)
   }
 }
 
-void validateAtlas(const Atlas& atlas)
+/// Every attribute of every image the right size, every position finite.
+void checkImageData(const Atlas& atlas)
 {
-  validateAtlasLayout(atlas);
-  // Texels: every attribute of every image the right size, every position finite.
   for (size_t k = 0; k < atlas.images.size(); ++k)
   {
     const AtlasImage& image = atlas.images[k];
@@ -207,54 +214,80 @@ void validateAtlas(const Atlas& atlas)
         }
       });
   }
-  const size_t nc = atlas.charts.size();
+}
 
-  // Shared sides: sample t of a side equals sample N - t of the neighbour's side at every common
-  // level, and sample 2t of the next finer level of the same chart (the dyadic subset property
-  // stitching relies on). Positions only: a side along a feature may keep one-sided normals.
-  std::unordered_map<int32_t, const float*> cornerPosition;
-  for (size_t c = 0; c < nc; ++c)
+/// Side k of chart c: sample t equals sample N - t of the neighbour's side at every common
+/// level, and sample 2t of the next finer level of the same chart (the dyadic subset property
+/// stitching relies on). Positions only: a side along a feature may keep one-sided normals.
+void checkSharedSide(const Atlas& atlas, size_t c, int k)
+{
+  const AtlasChart& chart = atlas.charts[c];
+  const int32_t ci = static_cast<int32_t>(c);
+  const int32_t nb = chart.neighborChart[k];
+  const int32_t ns = chart.neighborSide[k];
+  const int32_t common = std::min(chart.maxLevel, atlas.charts[static_cast<size_t>(nb)].maxLevel);
+  for (int32_t d = 0; d <= chart.maxLevel; ++d)
   {
-    const AtlasChart& chart = atlas.charts[c];
-    const int32_t ci = static_cast<int32_t>(c);
-    for (int k = 0; k < 3; ++k)
+    const int32_t n = 1 << d;
+    for (int32_t t = 0; t <= n; ++t)
     {
-      const int32_t nb = chart.neighborChart[k];
-      const int32_t ns = chart.neighborSide[k];
-      const int32_t common =
-        std::min(chart.maxLevel, atlas.charts[static_cast<size_t>(nb)].maxLevel);
-      for (int32_t d = 0; d <= chart.maxLevel; ++d)
+      const std::array<int32_t, 2> ij = sidePoint(k, t, n);
+      const float* p = atlasSample(atlas, ci, 0, d, ij[0], ij[1]);
+      if (d <= common)
       {
-        const int32_t n = 1 << d;
-        for (int32_t t = 0; t <= n; ++t)
+        const std::array<int32_t, 2> nij = sidePoint(ns, n - t, n);
+        if (!samePosition(p, atlasSample(atlas, nb, 0, d, nij[0], nij[1])))
         {
-          const std::array<int32_t, 2> ij = sidePoint(k, t, n);
-          const float* p = atlasSample(atlas, ci, 0, d, ij[0], ij[1]);
-          if (d <= common)
-          {
-            const std::array<int32_t, 2> nij = sidePoint(ns, n - t, n);
-            if (!samePosition(p, atlasSample(atlas, nb, 0, d, nij[0], nij[1])))
-            {
-              fail(chartName(c) + " side " + std::to_string(k) + " level " + std::to_string(d) +
-                " sample " + std::to_string(t) + " differs from " + chartName(nb) +
-                "'s copy of it");
-            }
-          }
-          if (d < chart.maxLevel)
-          {
-            const std::array<int32_t, 2> fij = sidePoint(k, 2 * t, 2 * n);
-            if (!samePosition(p, atlasSample(atlas, ci, 0, d + 1, fij[0], fij[1])))
-            {
-              fail(chartName(c) + " side " + std::to_string(k) + " level " + std::to_string(d) +
-                " sample " + std::to_string(t) + " is not sample " + std::to_string(2 * t) +
-                " of level " + std::to_string(d + 1));
-            }
-          }
+          fail(chartName(c) + " side " + std::to_string(k) + " level " + std::to_string(d) +
+            " sample " + std::to_string(t) + " differs from " + chartName(nb) + "'s copy of it");
         }
       }
-      // Corner k: the base vertex's position, the same in every chart around it.
-      const float* p = atlasSample(atlas, ci, 0, chart.maxLevel,
-        sidePoint(k, 0, 1 << chart.maxLevel)[0], sidePoint(k, 0, 1 << chart.maxLevel)[1]);
+      if (d < chart.maxLevel)
+      {
+        const std::array<int32_t, 2> fij = sidePoint(k, 2 * t, 2 * n);
+        if (!samePosition(p, atlasSample(atlas, ci, 0, d + 1, fij[0], fij[1])))
+        {
+          fail(chartName(c) + " side " + std::to_string(k) + " level " + std::to_string(d) +
+            " sample " + std::to_string(t) + " is not sample " + std::to_string(2 * t) +
+            " of level " + std::to_string(d + 1));
+        }
+      }
+    }
+  }
+}
+} // namespace
+
+void validateAtlasLayout(const Atlas& atlas)
+{
+  checkAttributes(atlas);
+  if (atlas.charts.empty())
+  {
+    fail("it has no chart");
+  }
+  checkImageSizes(atlas);
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    checkChartLayout(atlas, c);
+  }
+  checkTexelOwners(atlas);
+}
+
+void validateAtlas(const Atlas& atlas)
+{
+  validateAtlasLayout(atlas);
+  checkImageData(atlas);
+  // Shared sides, and corner k of every chart: the base vertex's position, the same in every
+  // chart around it.
+  std::unordered_map<int32_t, const float*> cornerPosition;
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    const AtlasChart& chart = atlas.charts[c];
+    for (int k = 0; k < 3; ++k)
+    {
+      checkSharedSide(atlas, c, k);
+      const std::array<int32_t, 2> corner = sidePoint(k, 0, 1 << chart.maxLevel);
+      const float* p =
+        atlasSample(atlas, static_cast<int32_t>(c), 0, chart.maxLevel, corner[0], corner[1]);
       auto [it, inserted] = cornerPosition.emplace(chart.cornerVertex[k], p);
       if (!inserted && !samePosition(it->second, p))
       {

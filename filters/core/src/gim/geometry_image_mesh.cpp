@@ -6,13 +6,17 @@
 
 // Written by hand: stitching and welding by eq. (8) is specific to this atlas layout; no library
 // does it. How this file works:
-//  1. checkAtlas: what reading and welding need (O(C)); the sample invariants are validateAtlas's.
+//  1. checkLevels, checkImages, checkCharts: what reading and welding need (O(C)); the sample
+//     invariants are validateAtlas's.
 //  2. makePlan: the index of every output point follows from counts (base vertices, then the
 //     2^m - 1 inner samples of every base edge at the lower of its two levels, then every chart's
 //     interior), so charts can be processed independently and the weld is deterministic.
 //  3. One parallel pass over charts applies the vertex rule (stitchedGridPoint) to every grid
-//     vertex, maps it to its point and emits the triangles that keep three distinct corners.
-//  4. One parallel pass over points reads every attribute from the point's source sample.
+//     vertex and maps it to its point (mapChartVertices), sets the sources of the points the
+//     chart owns (setOwnedSources) and emits the triangles that keep three distinct corners
+//     (chartTriangles).
+//  4. One parallel pass over points reads every attribute from the point's source sample
+//     (readPointAttributes).
 
 #include <algorithm>
 #include <cstring>
@@ -72,101 +76,121 @@ void checkImages(const Atlas& atlas)
   }
 }
 
-void checkCharts(const Atlas& atlas)
+/// Texels of the three corners of every level of chart c inside their image: the texel map is
+/// affine and the sample triangle convex, so every sample is then inside.
+void checkChartTexels(const Atlas& atlas, size_t c)
 {
-  const size_t numCharts = atlas.charts.size();
-  for (size_t c = 0; c < numCharts; ++c)
+  const AtlasChart& chart = atlas.charts[c];
+  for (int32_t d = 0; d <= chart.maxLevel; ++d)
   {
-    const AtlasChart& chart = atlas.charts[c];
-    // Level 30 is where 2^level stops fitting the int32 grid coordinates; the image checks below
-    // bound real atlases far lower.
-    if (chart.maxLevel < 0 || chart.maxLevel > 30)
+    const AtlasImage& image = atlas.images[static_cast<size_t>(chart.maxLevel - d)];
+    const int32_t big = int32_t(1) << d;
+    for (const std::array<int32_t, 2>& ij : { std::array<int32_t, 2>{ 0, 0 },
+           std::array<int32_t, 2>{ big, 0 }, std::array<int32_t, 2>{ 0, big } })
     {
-      throw InputError(chartName(c) + " has maxLevel " + std::to_string(chart.maxLevel) +
-        "; it must lie in [0, 30].");
-    }
-    if (chart.origin.size() != static_cast<size_t>(chart.maxLevel) + 1 ||
-      atlas.images.size() <= static_cast<size_t>(chart.maxLevel))
-    {
-      throw InputError(chartName(c) + " has maxLevel " + std::to_string(chart.maxLevel) + ", " +
-        std::to_string(chart.origin.size()) + " origins and the atlas " +
-        std::to_string(atlas.images.size()) + " images; it needs maxLevel + 1 of each.");
-    }
-    if (chart.rotated > 1)
-    {
-      throw InputError(
-        chartName(c) + " has rotated = " + std::to_string(chart.rotated) + "; it must be 0 or 1.");
-    }
-    // The texel map is affine and the sample triangle convex, so its three corners inside the
-    // image put every sample inside.
-    for (int32_t d = 0; d <= chart.maxLevel; ++d)
-    {
-      const AtlasImage& image = atlas.images[static_cast<size_t>(chart.maxLevel - d)];
-      const int32_t big = int32_t(1) << d;
-      for (const std::array<int32_t, 2>& ij : { std::array<int32_t, 2>{ 0, 0 },
-             std::array<int32_t, 2>{ big, 0 }, std::array<int32_t, 2>{ 0, big } })
+      // Widened: an origin near INT32_MAX must not wrap around into the image.
+      const std::array<int32_t, 2>& o = chart.origin[static_cast<size_t>(chart.maxLevel - d)];
+      const int64_t x = chart.rotated ? int64_t(o[0]) - ij[0] : int64_t(o[0]) + ij[0];
+      const int64_t y = chart.rotated ? int64_t(o[1]) - ij[1] : int64_t(o[1]) + ij[1];
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height)
       {
-        // Widened: an origin near INT32_MAX must not wrap around into the image.
-        const std::array<int32_t, 2>& o = chart.origin[static_cast<size_t>(chart.maxLevel - d)];
-        const int64_t x = chart.rotated ? int64_t(o[0]) - ij[0] : int64_t(o[0]) + ij[0];
-        const int64_t y = chart.rotated ? int64_t(o[1]) - ij[1] : int64_t(o[1]) + ij[1];
-        if (x < 0 || y < 0 || x >= image.width || y >= image.height)
-        {
-          throw InputError(chartName(c) + ", level " + std::to_string(d) + ": sample (" +
-            std::to_string(ij[0]) + ", " + std::to_string(ij[1]) + ") falls on texel (" +
-            std::to_string(x) + ", " + std::to_string(y) + "), outside image " +
-            std::to_string(chart.maxLevel - d) + " (" + std::to_string(image.width) + " x " +
-            std::to_string(image.height) + "); fix the chart's origin or the image size.");
-        }
-      }
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      if (chart.cornerVertex[k] < 0 || chart.cornerVertex[k] == chart.cornerVertex[(k + 1) % 3])
-      {
-        throw InputError(chartName(c) + " has corner vertices " +
-          std::to_string(chart.cornerVertex[0]) + ", " + std::to_string(chart.cornerVertex[1]) +
-          ", " + std::to_string(chart.cornerVertex[2]) +
-          "; they must be three distinct base-vertex ids >= 0.");
-      }
-      const int32_t nb = chart.neighborChart[k], ns = chart.neighborSide[k];
-      if (nb < 0 || static_cast<size_t>(nb) >= numCharts || ns < 0 || ns > 2)
-      {
-        throw InputError(chartName(c) + ", side " + std::to_string(k) + ": neighbour (chart " +
-          std::to_string(nb) + ", side " + std::to_string(ns) + ") does not exist; the atlas has " +
-          std::to_string(numCharts) + " charts of 3 sides and must be closed.");
+        throw InputError(chartName(c) + ", level " + std::to_string(d) + ": sample (" +
+          std::to_string(ij[0]) + ", " + std::to_string(ij[1]) + ") falls on texel (" +
+          std::to_string(x) + ", " + std::to_string(y) + "), outside image " +
+          std::to_string(chart.maxLevel - d) + " (" + std::to_string(image.width) + " x " +
+          std::to_string(image.height) + "); fix the chart's origin or the image size.");
       }
     }
   }
-  // Every neighbour exists (above), so these reads stay inside the chart table.
-  for (size_t c = 0; c < numCharts; ++c)
+}
+
+/// Chart c's own fields: level, origins, rotation, texels, three distinct corners and
+/// neighbours that exist.
+void checkChart(const Atlas& atlas, size_t c)
+{
+  const size_t numCharts = atlas.charts.size();
+  const AtlasChart& chart = atlas.charts[c];
+  // Level 30 is where 2^level stops fitting the int32 grid coordinates; the image checks below
+  // bound real atlases far lower.
+  if (chart.maxLevel < 0 || chart.maxLevel > 30)
   {
-    const AtlasChart& chart = atlas.charts[c];
-    for (int k = 0; k < 3; ++k)
+    throw InputError(chartName(c) + " has maxLevel " + std::to_string(chart.maxLevel) +
+      "; it must lie in [0, 30].");
+  }
+  if (chart.origin.size() != static_cast<size_t>(chart.maxLevel) + 1 ||
+    atlas.images.size() <= static_cast<size_t>(chart.maxLevel))
+  {
+    throw InputError(chartName(c) + " has maxLevel " + std::to_string(chart.maxLevel) + ", " +
+      std::to_string(chart.origin.size()) + " origins and the atlas " +
+      std::to_string(atlas.images.size()) + " images; it needs maxLevel + 1 of each.");
+  }
+  if (chart.rotated > 1)
+  {
+    throw InputError(
+      chartName(c) + " has rotated = " + std::to_string(chart.rotated) + "; it must be 0 or 1.");
+  }
+  checkChartTexels(atlas, c);
+  for (int k = 0; k < 3; ++k)
+  {
+    if (chart.cornerVertex[k] < 0 || chart.cornerVertex[k] == chart.cornerVertex[(k + 1) % 3])
     {
-      const int32_t nb = chart.neighborChart[k], ns = chart.neighborSide[k];
-      const std::string where = chartName(c) + ", side " + std::to_string(k) + ": ";
-      const AtlasChart& other = atlas.charts[static_cast<size_t>(nb)];
-      if (other.neighborChart[ns] != static_cast<int32_t>(c) || other.neighborSide[ns] != k ||
-        (static_cast<size_t>(nb) == c && ns == k))
-      {
-        throw InputError(where + "its neighbour, chart " + std::to_string(nb) + " side " +
-          std::to_string(ns) + ", names chart " + std::to_string(other.neighborChart[ns]) +
-          " side " + std::to_string(other.neighborSide[ns]) +
-          " back; neighbours must name each other (run validateAtlas on the producer's output).");
-      }
-      // The neighbour runs the side the other way: its side starts at this side's end corner.
-      if (other.cornerVertex[ns] != chart.cornerVertex[(k + 1) % 3] ||
-        other.cornerVertex[(ns + 1) % 3] != chart.cornerVertex[k])
-      {
-        throw InputError(where + "runs from base vertex " + std::to_string(chart.cornerVertex[k]) +
-          " to " + std::to_string(chart.cornerVertex[(k + 1) % 3]) + " but its neighbour, chart " +
-          std::to_string(nb) + " side " + std::to_string(ns) + ", from " +
-          std::to_string(other.cornerVertex[ns]) + " to " +
-          std::to_string(other.cornerVertex[(ns + 1) % 3]) +
-          "; a shared side must join the same base vertices, in opposite directions.");
-      }
+      throw InputError(chartName(c) + " has corner vertices " +
+        std::to_string(chart.cornerVertex[0]) + ", " + std::to_string(chart.cornerVertex[1]) +
+        ", " + std::to_string(chart.cornerVertex[2]) +
+        "; they must be three distinct base-vertex ids >= 0.");
     }
+    const int32_t nb = chart.neighborChart[k], ns = chart.neighborSide[k];
+    if (nb < 0 || static_cast<size_t>(nb) >= numCharts || ns < 0 || ns > 2)
+    {
+      throw InputError(chartName(c) + ", side " + std::to_string(k) + ": neighbour (chart " +
+        std::to_string(nb) + ", side " + std::to_string(ns) + ") does not exist; the atlas has " +
+        std::to_string(numCharts) + " charts of 3 sides and must be closed.");
+    }
+  }
+}
+
+/// The neighbours of chart c (which exist: checkChart) name it back and run each shared side
+/// between the same corners the other way.
+void checkNeighbours(const Atlas& atlas, size_t c)
+{
+  const AtlasChart& chart = atlas.charts[c];
+  for (int k = 0; k < 3; ++k)
+  {
+    const int32_t nb = chart.neighborChart[k], ns = chart.neighborSide[k];
+    const std::string where = chartName(c) + ", side " + std::to_string(k) + ": ";
+    const AtlasChart& other = atlas.charts[static_cast<size_t>(nb)];
+    if (other.neighborChart[ns] != static_cast<int32_t>(c) || other.neighborSide[ns] != k ||
+      (static_cast<size_t>(nb) == c && ns == k))
+    {
+      throw InputError(where + "its neighbour, chart " + std::to_string(nb) + " side " +
+        std::to_string(ns) + ", names chart " + std::to_string(other.neighborChart[ns]) + " side " +
+        std::to_string(other.neighborSide[ns]) +
+        " back; neighbours must name each other (run validateAtlas on the producer's output).");
+    }
+    // The neighbour runs the side the other way: its side starts at this side's end corner.
+    if (other.cornerVertex[ns] != chart.cornerVertex[(k + 1) % 3] ||
+      other.cornerVertex[(ns + 1) % 3] != chart.cornerVertex[k])
+    {
+      throw InputError(where + "runs from base vertex " + std::to_string(chart.cornerVertex[k]) +
+        " to " + std::to_string(chart.cornerVertex[(k + 1) % 3]) + " but its neighbour, chart " +
+        std::to_string(nb) + " side " + std::to_string(ns) + ", from " +
+        std::to_string(other.cornerVertex[ns]) + " to " +
+        std::to_string(other.cornerVertex[(ns + 1) % 3]) +
+        "; a shared side must join the same base vertices, in opposite directions.");
+    }
+  }
+}
+
+void checkCharts(const Atlas& atlas)
+{
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    checkChart(atlas, c);
+  }
+  // Every neighbour exists (above), so these reads stay inside the chart table.
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    checkNeighbours(atlas, c);
   }
 }
 
@@ -270,22 +294,8 @@ inline int32_t pointOf(const Plan& plan, size_t c, int32_t n, int32_t i, int32_t
   {
     return plan.cornerPoint[3 * c + 2];
   }
-  int k = -1, t = 0;
-  if (j == 0)
-  {
-    k = 0;
-    t = i;
-  }
-  else if (i + j == big)
-  {
-    k = 1;
-    t = j;
-  }
-  else if (i == 0)
-  {
-    k = 2;
-    t = big - j;
-  }
+  const std::array<int32_t, 2> side = gridSide(i, j, big);
+  const int32_t k = side[0], t = side[1];
   if (k < 0)
   {
     return static_cast<int32_t>(
@@ -298,10 +308,8 @@ inline int32_t pointOf(const Plan& plan, size_t c, int32_t n, int32_t i, int32_t
   const int32_t index = plan.owns[3 * c + k] ? s : (int32_t(1) << m) - s;
   return static_cast<int32_t>(plan.edgeBase[static_cast<size_t>(e)] + index - 1);
 }
-} // namespace
-
-RebuiltMesh rebuildMesh(
-  const Atlas& atlas, const std::vector<int32_t>& levels, const Progress& progress)
+/// @throws InputError for an atlas without charts, or levels that are not one >= 0 per chart
+void checkLevels(const Atlas& atlas, const std::vector<int32_t>& levels)
 {
   if (atlas.charts.empty())
   {
@@ -321,13 +329,13 @@ RebuiltMesh rebuildMesh(
         std::to_string(c) + "; levels must be >= 0 (0 draws a chart as one triangle).");
     }
   }
-  checkImages(atlas);
-  checkCharts(atlas);
-  progress.report(0.0);
+}
 
-  const Plan plan = makePlan(atlas, levels);
-  const size_t numCharts = atlas.charts.size();
-
+/// The output's per-chart arrays sized by the plan, and the sources of the base vertices, read
+/// from the lowest chart that has them (the chart pass writes only the points one chart owns).
+RebuiltMesh startMesh(const Plan& plan)
+{
+  const size_t numCharts = plan.levels.size();
   RebuiltMesh out;
   out.chartLevel = plan.levels;
   out.chartVertexOffsets.resize(numCharts + 1, 0);
@@ -337,8 +345,6 @@ RebuiltMesh rebuildMesh(
   }
   out.chartVertexPoint.resize(static_cast<size_t>(out.chartVertexOffsets[numCharts]));
   out.pointSource.assign(static_cast<size_t>(3 * plan.numPoints), -1);
-  // Base vertices are read from the lowest chart that has them (the chart pass below writes
-  // only the points that one chart owns).
   for (size_t c = 0; c < numCharts; ++c)
   {
     const int32_t big = int32_t(1) << plan.levels[c];
@@ -354,93 +360,107 @@ RebuiltMesh rebuildMesh(
       }
     }
   }
+  return out;
+}
 
-  std::vector<std::vector<int32_t>> chartTriangles(numCharts);
-  parallel_for(
-    static_cast<int64_t>(numCharts),
-    [&](int64_t ci)
+/// The vertex rule on every grid vertex of chart c, mapped to its output point.
+void mapChartVertices(const Atlas& atlas, const Plan& plan, size_t c, int32_t* vertexPoint)
+{
+  const AtlasChart& chart = atlas.charts[c];
+  const int32_t n = plan.levels[c];
+  const int32_t big = int32_t(1) << n;
+  const std::array<int32_t, 3> neighborLevels{
+    plan.levels[static_cast<size_t>(chart.neighborChart[0])],
+    plan.levels[static_cast<size_t>(chart.neighborChart[1])],
+    plan.levels[static_cast<size_t>(chart.neighborChart[2])]
+  };
+  for (int32_t j = 0, v = 0; j <= big; ++j)
+  {
+    for (int32_t i = 0; i + j <= big; ++i, ++v)
     {
-      const size_t c = static_cast<size_t>(ci);
-      const AtlasChart& chart = atlas.charts[c];
-      const int32_t n = plan.levels[c];
-      const int32_t big = int32_t(1) << n;
-      const std::array<int32_t, 3> neighborLevels{
-        plan.levels[static_cast<size_t>(chart.neighborChart[0])],
-        plan.levels[static_cast<size_t>(chart.neighborChart[1])],
-        plan.levels[static_cast<size_t>(chart.neighborChart[2])]
-      };
-      int32_t* vertexPoint = out.chartVertexPoint.data() + out.chartVertexOffsets[c];
-      for (int32_t j = 0, v = 0; j <= big; ++j)
-      {
-        for (int32_t i = 0; i + j <= big; ++i, ++v)
-        {
-          const std::array<int32_t, 2> g = stitchedGridPoint(n, neighborLevels, i, j);
-          vertexPoint[v] = pointOf(plan, c, n, g[0], g[1]);
-        }
-      }
+      const std::array<int32_t, 2> g = stitchedGridPoint(n, neighborLevels, i, j);
+      vertexPoint[v] = pointOf(plan, c, n, g[0], g[1]);
+    }
+  }
+}
 
-      // Sources of the points this chart owns: its interior and the sides it owns, read at the
-      // side's own samples (multiples of 2^(n - m)), which stitching never moves.
-      for (int32_t j = 1; j < big; ++j)
-      {
-        for (int32_t i = 1; i + j < big; ++i)
-        {
-          int32_t* source = &out.pointSource[3 * static_cast<size_t>(pointOf(plan, c, n, i, j))];
-          source[0] = static_cast<int32_t>(c);
-          source[1] = i;
-          source[2] = j;
-        }
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (!plan.owns[3 * c + k])
-        {
-          continue;
-        }
-        const int32_t m = plan.edgeLevel[static_cast<size_t>(plan.edgeOf[3 * c + k])];
-        for (int32_t s = 1; s < (int32_t(1) << m); ++s)
-        {
-          const std::array<int32_t, 2> g = sidePoint(k, s << (n - m), big);
-          int32_t* source =
-            &out.pointSource[3 * static_cast<size_t>(pointOf(plan, c, n, g[0], g[1]))];
-          source[0] = static_cast<int32_t>(c);
-          source[1] = g[0];
-          source[2] = g[1];
-        }
-      }
+/// Sources of the points chart c owns: its interior and the sides it owns, read at the side's
+/// own samples (multiples of 2^(n - m)), which stitching never moves.
+void setOwnedSources(const Plan& plan, size_t c, std::vector<int32_t>& pointSource)
+{
+  const int32_t n = plan.levels[c];
+  const int32_t big = int32_t(1) << n;
+  const auto setSource = [&](int32_t i, int32_t j)
+  {
+    int32_t* source = &pointSource[3 * static_cast<size_t>(pointOf(plan, c, n, i, j))];
+    source[0] = static_cast<int32_t>(c);
+    source[1] = i;
+    source[2] = j;
+  };
+  for (int32_t j = 1; j < big; ++j)
+  {
+    for (int32_t i = 1; i + j < big; ++i)
+    {
+      setSource(i, j);
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!plan.owns[3 * c + k])
+    {
+      continue;
+    }
+    const int32_t m = plan.edgeLevel[static_cast<size_t>(plan.edgeOf[3 * c + k])];
+    for (int32_t s = 1; s < (int32_t(1) << m); ++s)
+    {
+      const std::array<int32_t, 2> g = sidePoint(k, s << (n - m), big);
+      setSource(g[0], g[1]);
+    }
+  }
+}
 
-      // Grid triangles in row order; rows j and j + 1 are consecutive runs of vertexPoint.
-      std::vector<int32_t>& tris = chartTriangles[c];
-      tris.reserve(3 * static_cast<size_t>(big) * static_cast<size_t>(big));
-      const auto emit = [&tris](int32_t a, int32_t b, int32_t d)
+/// The grid triangles of a chart at level n in row order, those that keep three distinct points;
+/// rows j and j + 1 are consecutive runs of vertexPoint.
+std::vector<int32_t> chartTriangles(int32_t n, const int32_t* vertexPoint)
+{
+  const int32_t big = int32_t(1) << n;
+  std::vector<int32_t> tris;
+  tris.reserve(3 * static_cast<size_t>(big) * static_cast<size_t>(big));
+  const auto emit = [&tris](int32_t a, int32_t b, int32_t d)
+  {
+    if (a != b && b != d && d != a)
+    {
+      tris.insert(tris.end(), { a, b, d });
+    }
+  };
+  for (int32_t j = 0, row = 0; j < big; ++j)
+  {
+    const int32_t* lo = vertexPoint + row;  // row j: big + 1 - j vertices
+    const int32_t* hi = lo + (big + 1 - j); // row j + 1
+    for (int32_t i = 0; i + j < big; ++i)
+    {
+      emit(lo[i], lo[i + 1], hi[i]);
+      if (i + j + 2 <= big)
       {
-        if (a != b && b != d && d != a)
-        {
-          tris.insert(tris.end(), { a, b, d });
-        }
-      };
-      for (int32_t j = 0, row = 0; j < big; ++j)
-      {
-        const int32_t* lo = vertexPoint + row;  // row j: big + 1 - j vertices
-        const int32_t* hi = lo + (big + 1 - j); // row j + 1
-        for (int32_t i = 0; i + j < big; ++i)
-        {
-          emit(lo[i], lo[i + 1], hi[i]);
-          if (i + j + 2 <= big)
-          {
-            emit(lo[i + 1], hi[i + 1], hi[i]);
-          }
-        }
-        row += big + 1 - j;
+        emit(lo[i + 1], hi[i + 1], hi[i]);
       }
-    },
-    progress.sub(0.0, 0.6));
+    }
+    row += big + 1 - j;
+  }
+  return tris;
+}
 
+/// The charts' triangles one after the other, with their chart and level; counts the dropped
+/// ones. Frees the per-chart lists.
+void gatherTriangles(
+  const Plan& plan, std::vector<std::vector<int32_t>>& perChart, RebuiltMesh& out)
+{
+  const size_t numCharts = perChart.size();
   size_t numTriangleIds = 0;
   int64_t gridTriangles = 0;
   for (size_t c = 0; c < numCharts; ++c)
   {
-    numTriangleIds += chartTriangles[c].size();
+    numTriangleIds += perChart[c].size();
     gridTriangles += int64_t(1) << (2 * plan.levels[c]);
   }
   out.mesh.triangles.reserve(numTriangleIds);
@@ -448,17 +468,20 @@ RebuiltMesh rebuildMesh(
   out.level.reserve(numTriangleIds / 3);
   for (size_t c = 0; c < numCharts; ++c)
   {
-    std::vector<int32_t>& tris = chartTriangles[c];
+    std::vector<int32_t>& tris = perChart[c];
     out.mesh.triangles.insert(out.mesh.triangles.end(), tris.begin(), tris.end());
     out.chartId.insert(out.chartId.end(), tris.size() / 3, static_cast<int32_t>(c));
     out.level.insert(out.level.end(), tris.size() / 3, plan.levels[c]);
     std::vector<int32_t>().swap(tris);
   }
   out.droppedTriangles = gridTriangles - static_cast<int64_t>(numTriangleIds / 3);
-  progress.report(0.65);
+}
 
-  // Every attribute of a point comes from its one source sample, so points shared by charts
-  // are bit-identical to what each chart's shader reads (the atlas invariants).
+/// Every attribute of every point from its one source sample, so points shared by charts are
+/// bit-identical to what each chart's shader reads (the atlas invariants). In parallel.
+void readPointAttributes(
+  const Atlas& atlas, const Plan& plan, RebuiltMesh& out, const Progress& progress)
+{
   const size_t numPoints = static_cast<size_t>(plan.numPoints);
   const size_t numAttributes = atlas.attributes.size();
   out.mesh.points.resize(3 * numPoints);
@@ -490,7 +513,39 @@ RebuiltMesh rebuildMesh(
         }
       }
     },
-    progress.sub(0.65, 1.0));
+    progress);
+}
+} // namespace
+
+RebuiltMesh rebuildMesh(
+  const Atlas& atlas, const std::vector<int32_t>& levels, const Progress& progress)
+{
+  checkLevels(atlas, levels);
+  checkImages(atlas);
+  checkCharts(atlas);
+  progress.report(0.0);
+
+  // Every output point's index from the counts, then one pass over the charts: the vertex rule,
+  // the sources of the points each chart owns, and its triangles.
+  const Plan plan = makePlan(atlas, levels);
+  RebuiltMesh out = startMesh(plan);
+  std::vector<std::vector<int32_t>> perChart(atlas.charts.size());
+  parallel_for(
+    static_cast<int64_t>(atlas.charts.size()),
+    [&](int64_t ci)
+    {
+      const size_t c = static_cast<size_t>(ci);
+      int32_t* vertexPoint = out.chartVertexPoint.data() + out.chartVertexOffsets[c];
+      mapChartVertices(atlas, plan, c, vertexPoint);
+      setOwnedSources(plan, c, out.pointSource);
+      perChart[c] = chartTriangles(plan.levels[c], vertexPoint);
+    },
+    progress.sub(0.0, 0.6));
+  gatherTriangles(plan, perChart, out);
+  progress.report(0.65);
+
+  // Every point's attributes from its source sample.
+  readPointAttributes(atlas, plan, out, progress.sub(0.65, 1.0));
   return out;
 }
 

@@ -346,8 +346,14 @@ void selectLevels(
   }
 }
 
-void buildDrawList(
-  const LodCharts& charts, const int32_t* levels, int32_t instances, LodDrawList& list)
+namespace
+{
+/// Per-entry cursor of the counting sort, one slot per level and one for culled charts.
+using LevelCursor = std::array<int64_t, kLodMaxLevel + 2>;
+
+/// The chart arrays a draw list reads: a stride that packs in 4 bits, neighbours that are -1
+/// or charts, maxLevel in [0, stride).
+void checkDrawListCharts(const LodCharts& charts, int32_t instances)
 {
   checkCharts(charts);
   if (instances < 0)
@@ -382,9 +388,16 @@ void buildDrawList(
         std::to_string(charts.maxLevel[static_cast<size_t>(c)]) + " outside [0, stride)");
     }
   }
+}
 
-  // Counting sort, pass 1: entries per level (and the level range check).
-  std::array<int64_t, kLodMaxLevel + 2> cursor{};
+/// Counting sort, pass 1: entries per level (and the level range check), the list's level
+/// starts, counts and triangles; returns the cursor of each level at its start.
+LevelCursor countLevels(
+  const LodCharts& charts, const int32_t* levels, int32_t instances, LodDrawList& list)
+{
+  const int32_t n = charts.size();
+  const int32_t stride = charts.stride;
+  LevelCursor cursor{};
   list.chartsPerLevel.assign(static_cast<size_t>(stride), 0);
   for (int64_t r = 0; r < instances; ++r)
   {
@@ -415,9 +428,14 @@ void buildDrawList(
   {
     cursor[static_cast<size_t>(d)] = list.levelStart[static_cast<size_t>(d)];
   }
-  list.entries.resize(static_cast<size_t>(list.levelStart[static_cast<size_t>(stride)]) * 4);
+  return cursor;
+}
 
-  // Pass 2: place every drawn chart with its own and its neighbours' levels (eq. (8)'s inputs).
+/// Pass 2: place every drawn chart with its own and its neighbours' levels (eq. (8)'s inputs).
+void placeEntries(const LodCharts& charts, const int32_t* levels, int32_t instances,
+  LevelCursor& cursor, LodDrawList& list)
+{
+  const int32_t n = charts.size();
   int32_t* entries = list.entries.data();
   const int32_t* neighbor = charts.neighbor.data();
   for (int32_t r = 0; r < instances; ++r)
@@ -444,5 +462,15 @@ void buildDrawList(
       e[3] = 0;
     }
   }
+}
+} // namespace
+
+void buildDrawList(
+  const LodCharts& charts, const int32_t* levels, int32_t instances, LodDrawList& list)
+{
+  checkDrawListCharts(charts, instances);
+  LevelCursor cursor = countLevels(charts, levels, instances, list);
+  list.entries.resize(static_cast<size_t>(list.levelStart[static_cast<size_t>(charts.stride)]) * 4);
+  placeEntries(charts, levels, instances, cursor, list);
 }
 } // namespace tc

@@ -18,6 +18,8 @@
 /// - every sample at dyadic arc-length fraction t / N of a side is the same point at every level,
 ///   so a coarser side's samples are a subset of a finer side's (what stitching by eq. 8 needs);
 /// - the corner samples of all charts around one base vertex are bit-identical.
+///
+/// The file an atlas is stored in (tc/io/atlas_io.h) is described in docs/atlas-format.md.
 #pragma once
 
 #include <array>
@@ -110,6 +112,42 @@ inline std::array<int32_t, 2> sidePoint(int32_t side, int32_t t, int32_t n)
     default:
       return { 0, n - t };
   }
+}
+
+/// The inverse of sidePoint: side k and parameter t of grid point (i, j) of a level with
+/// N = n samples per side, or side -1 (t = 0) for a point inside. A corner goes to the first side
+/// of 0, 1, 2 that holds it: (0, 0) is t = 0 of side 0, (N, 0) t = N of side 0, (0, N) t = N of
+/// side 1.
+inline std::array<int32_t, 2> gridSide(int32_t i, int32_t j, int32_t n)
+{
+  if (j == 0)
+  {
+    return { 0, i };
+  }
+  if (i + j == n)
+  {
+    return { 1, j };
+  }
+  if (i == 0)
+  {
+    return { 2, n - j };
+  }
+  return { -1, 0 };
+}
+
+/// Number of samples (i, j), i + j <= N = 2^n, of a chart's level n: (N + 1)(N + 2) / 2.
+inline int64_t gridVertexCount(int32_t n)
+{
+  const int64_t big = int64_t(1) << n;
+  return (big + 1) * (big + 2) / 2;
+}
+
+/// Index of sample (i, j) of a chart's level n, row by row (j, then i): the order of a level's
+/// samples in memory (the builder's grids, RebuiltMesh::chartVertexPoint, a vertex buffer).
+inline int64_t gridVertexIndex(int32_t n, int32_t i, int32_t j)
+{
+  const int64_t big = int64_t(1) << n;
+  return static_cast<int64_t>(j) * (big + 1) - static_cast<int64_t>(j) * (j - 1) / 2 + i;
 }
 
 /// The attribute values of sample (i, j) of chart `chart` at level d.

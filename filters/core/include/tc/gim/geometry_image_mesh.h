@@ -47,9 +47,9 @@
 /// table and no sort of samples, since every point's index follows from the counts above.
 #pragma once
 
-#include "tc/gim/atlas.h"
 #include "tc/common/mesh.h"
 #include "tc/common/progress.h"
+#include "tc/gim/atlas.h"
 
 #include <array>
 #include <cstdint>
@@ -57,20 +57,7 @@
 
 namespace tc
 {
-/// Number of grid vertices (i, j), i + j <= N = 2^n, of a chart at level n: (N + 1)(N + 2) / 2.
-inline int64_t gridVertexCount(int32_t n)
-{
-  const int64_t big = int64_t(1) << n;
-  return (big + 1) * (big + 2) / 2;
-}
-
-/// Index of grid vertex (i, j) of a chart at level n, row by row (j, then i): the order of
-/// RebuiltMesh::chartVertexPoint (and of a vertex buffer built the same way).
-inline int64_t gridVertexIndex(int32_t n, int32_t i, int32_t j)
-{
-  const int64_t big = int64_t(1) << n;
-  return static_cast<int64_t>(j) * (big + 1) - static_cast<int64_t>(j) * (j - 1) / 2 + i;
-}
+// gridVertexCount and gridVertexIndex (tc/gim/atlas.h) count and order a chart's grid vertices.
 
 /// The vertex rule above: the grid point (i', j') whose sample grid vertex (i, j) of a chart at
 /// `level` draws, given the levels (>= 0, clamped like the chart's) of the charts across its
@@ -79,23 +66,10 @@ inline std::array<int32_t, 2> stitchedGridPoint(
   int32_t level, const std::array<int32_t, 3>& neighborLevels, int32_t i, int32_t j)
 {
   const int32_t big = int32_t(1) << level;
-  int32_t side = -1, t = 0;
-  if (j == 0 && i != 0 && i != big)
-  {
-    side = 0;
-    t = i;
-  }
-  else if (i + j == big && i != 0 && j != 0)
-  {
-    side = 1;
-    t = j;
-  }
-  else if (i == 0 && j != 0 && j != big)
-  {
-    side = 2;
-    t = big - j;
-  }
-  if (side < 0 || neighborLevels[side] >= level)
+  const std::array<int32_t, 2> st = gridSide(i, j, big);
+  const int32_t side = st[0], t = st[1];
+  // Corners (t = 0 or N) never move.
+  if (side < 0 || t == 0 || t == big || neighborLevels[side] >= level)
   {
     return { i, j };
   }

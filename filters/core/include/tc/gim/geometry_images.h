@@ -6,7 +6,7 @@
 /// its L2 stretch (see GeometryImageOptions::stretchIterations); the parameterization is
 /// resampled on a (2^d + 1)-per-side triangular grid for every level d <= d_max; charts are
 /// packed in pairs into (2^dh + 2) x (2^dh + 1) rectangles of one image per mip step. The result
-/// is a tc::Atlas (tc/atlas.h) that keeps every invariant listed there.
+/// is a tc::Atlas (tc/gim/atlas.h) that keeps every invariant listed there.
 ///
 /// How the samples are made:
 /// - The area rule (the paper's): 4^d_max of chart c proportional to its curvature-weighted
@@ -18,16 +18,16 @@
 /// - The error rule (LevelRule::Error, the default): every chart is sampled up to
 ///   min(area-rule d_max + kErrorRuleLevelsAbove, maxLevel) and its levelError measured at each
 ///   of those levels; then, from minLevel everywhere, the chart with the largest error at its
-///   current level rises by one level while that rise, gridSamples(d + 1) - gridSamples(d),
-///   fits sampleBudget. Errors within 1e-6 of (diagonal + largest |coordinate|) of the largest
-///   tie and rise together or not at all, so congruent charts keep one d_max and flat charts
-///   (errors of float rounding only) share the budget evenly. A chart at its cap, or a tie
-///   whose rise does not fit, leaves the competition and the next largest is tried. The same
+///   current level rises by one level while that rise, gridVertexCount(d + 1) -
+///   gridVertexCount(d), fits sampleBudget. Errors within 1e-6 of (diagonal + largest |coordinate|)
+///   of the largest tie and rise together or not at all, so congruent charts keep one d_max and
+///   flat charts (errors of float rounding only) share the budget evenly. A chart at its cap, or a
+///   tie whose rise does not fit, leaves the competition and the next largest is tried. The same
 ///   budget thus goes where the measured error is (creases inside a chart, whose error falls
-///   only about 2x per level, get the samples that flat charts do not need). The result does
-///   not depend on the thread count. Levels are point samples of the
-///   finest grid, so the grids sampled at the cap hold every lower level bit for bit: nothing is
-///   sampled twice and the atlas equals one sampled directly at the chosen d_max (then fitted).
+///   slowly with the level, get the samples that flat charts do not need). The result does not
+///   depend on the thread count. Levels are point samples of the finest grid, so the grids
+///   sampled at the cap hold every lower level bit for bit: nothing is sampled twice and the atlas
+///   equals one sampled directly at the chosen d_max (then fitted).
 /// - Interior grid samples: the grid point is located in the parameterized patch and position,
 ///   normal (renormalized) and every extra attribute are interpolated barycentrically.
 /// - Side samples are never located in 2-D: each path is sampled once, by arc length, from its
@@ -51,9 +51,8 @@
 ///   their (u, v), weighted by area; a weak membrane on the offsets keeps them smooth where a
 ///   sample has little data). Paths along feature curves stay on the curve; corners stay on
 ///   their base vertex; both charts of a side still copy the same floats at every level both
-///   have. On a sphere this halves the largest
-///   deviation; on the bench meshes the finest RMS error falls by 13-27%. levelError and the
-///   box are measured on the fitted samples. Normals and extra attributes stay interpolated.
+///   have. levelError and the box are measured on the fitted samples. Normals and extra
+///   attributes stay interpolated.
 /// - Level d is sample (2^(d_max-d) i, 2^(d_max-d) j) of the finest grid: a point-sampled
 ///   pyramid, so every level's sides are a subset of the finer ones (what eq. 8 needs).
 /// - Packing: charts sorted by d_max and paired in that order (closest d_max together); the
@@ -65,14 +64,13 @@
 ///
 /// Cost: one sparse LU per patch, O(samples) for the grids, one sparse LDLT per chart and per
 /// path for the fit. Patches, paths and charts run in parallel. The error rule samples up to
-/// 16x the budget to measure (two levels above the area rule). The stage takes 0.24 s on the
-/// 70K bunny (702 charts, 2 cores), 0.02 s of it the fit.
+/// 16x the budget to measure (two levels above the area rule).
 #pragma once
 
+#include "tc/common/progress.h"
 #include "tc/gim/atlas.h"
 #include "tc/gim/base_complex.h"
 #include "tc/gim/path_tracing.h"
-#include "tc/common/progress.h"
 
 #include <cstdint>
 #include <string>
