@@ -13,6 +13,7 @@ packages=(
   libeigen3-dev libspectra-dev libcgal-dev libopenexr-dev libboost-graph-dev libassimp-dev
   libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev nlohmann-json3-dev
   xvfb xauth mesa-utils libgl1-mesa-dri
+  universal-ctags
   python3-numpy python3-pytest
 )
 
