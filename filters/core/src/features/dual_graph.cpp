@@ -2,6 +2,8 @@
 #include "features/dual_graph.h"
 
 #include "features/face_adjacency.h"
+#include "features/face_geometry.h"
+#include "features/statistics.h"
 
 #include "tc/common/mesh_topology.h"
 #include "tc/common/parallel.h"
@@ -51,7 +53,6 @@ DualGraph adjacentPairs(const TriMesh& mesh, const EdgeTable& edges, const FaceA
   g.ids.resize(total);
   g.dist.resize(total);
   g.crest.resize(total);
-  const bool haveCrest = !crestVertex.empty();
   parallel_for(nf,
     [&](int64_t f)
     {
@@ -70,20 +71,10 @@ DualGraph adjacentPairs(const TriMesh& mesh, const EdgeTable& edges, const FaceA
         {
           mid[c] = 0.5 * (mesh.points[3 * a + c] + mesh.points[3 * b + c]);
         }
-        auto toMid2 = [&](int64_t face)
-        {
-          double s = 0.0;
-          for (int c = 0; c < 3; ++c)
-          {
-            const double d = centroids[3 * face + c] - mid[c];
-            s += d * d;
-          }
-          return s;
-        };
         const int32_t other = fa.faces[j];
         g.ids[slot] = other;
-        g.dist[slot] = std::sqrt(toMid2(f)) + std::sqrt(toMid2(other));
-        g.crest[slot] = haveCrest && crestVertex[a] && crestVertex[b] ? 1 : 0;
+        g.dist[slot] = distance3(&centroids[3 * f], mid) + distance3(&centroids[3 * other], mid);
+        g.crest[slot] = crestAlong(crestVertex, a, b) ? 1 : 0;
         ++slot;
       }
     });
@@ -336,6 +327,23 @@ DualGraph addExtraEdges(
   DualGraph g = mergeExtraEdges(adj, found);
   progress.report(1.0);
   return g;
+}
+
+ExactGraph buildExactGraph(const DualGraph& adjacent, const std::vector<uint8_t>& exact,
+  double extraEdgeFactor, const Progress& progress)
+{
+  ExactGraph out;
+  if (exact.empty())
+  {
+    return out;
+  }
+  const DistanceMoments near = distanceMoments(adjacent, exact);
+  const double radius = extraEdgeFactor * (near.count > 0 ? near.sum / near.count : 0.0);
+  out.graph = radius > 0.0 ? addExtraEdges(adjacent, exact, radius, progress) : adjacent;
+  const DistanceMoments used = distanceMoments(out.graph, exact);
+  const double sigmaD = standardDeviation(used.sum, used.squares, used.count);
+  out.invSigmaD = sigmaD > 0.0 ? 1.0 / sigmaD : 0.0;
+  return out;
 }
 
 Pieces findPieces(const DualGraph& g, const std::vector<int32_t>* label)

@@ -47,6 +47,19 @@ DualGraph buildAdjacentDual(const TriMesh& mesh, const std::vector<double>& cent
 DualGraph addExtraEdges(const DualGraph& adj, const std::vector<uint8_t>& active, double radius,
   const Progress& progress);
 
+/// The graph of the components that are clustered exactly, and eq. 3's sigma_d on it.
+struct ExactGraph
+{
+  DualGraph graph;        ///< the adjacent graph with the extra edges of section 4.2
+  double invSigmaD = 0.0; ///< 1 / sigma_d; 0 when all distances are equal (constant factor)
+};
+
+/// Extra edges (addExtraEdges) below extraEdgeFactor times the mean adjacent distance over the
+/// faces `exact` marks; sigma_d is the standard deviation of dist over that graph's edges.
+/// @param[in] exact  #F flags, or empty when no face is clustered exactly (empty result)
+ExactGraph buildExactGraph(const DualGraph& adjacent, const std::vector<uint8_t>& exact,
+  double extraEdgeFactor, const Progress& progress);
+
 /// Connected pieces of a graph, numbered in the order of their first (lowest) face.
 struct Pieces
 {

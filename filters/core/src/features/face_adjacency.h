@@ -24,6 +24,14 @@ struct FaceAdjacency
   std::vector<int32_t> edges;   ///< mesh edge shared with that neighbour
 };
 
+/// Whether a crest line runs along the mesh edge (a, b), so that beta of eq. 3 and 4 applies to
+/// the two faces it separates: both ends are crest vertices (crestVertices()).
+/// @param[in] crestVertex  #V flags, or empty (no crest anywhere)
+inline bool crestAlong(const std::vector<uint8_t>& crestVertex, int32_t a, int32_t b)
+{
+  return !crestVertex.empty() && crestVertex[a] && crestVertex[b];
+}
+
 /// @param[in] edges  buildEdgeTable() of the mesh
 /// @param[in] nf     number of faces
 FaceAdjacency buildFaceAdjacency(const EdgeTable& edges, int64_t nf);

@@ -8,7 +8,6 @@
 
 #include "tc/common/mesh.h"
 #include "tc/common/mesh_topology.h"
-#include "tc/common/progress.h"
 
 #include <cmath>
 #include <cstdint>
@@ -18,13 +17,19 @@ namespace tc
 {
 namespace detail
 {
+/// |p - q| of two 3-vectors.
+inline double distance3(const double* p, const double* q)
+{
+  const double dx = p[0] - q[0];
+  const double dy = p[1] - q[1];
+  const double dz = p[2] - q[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 /// |p_a - p_b|, the length of a mesh edge.
 inline double vertexDistance(const TriMesh& mesh, int64_t a, int64_t b)
 {
-  const double dx = mesh.points[3 * a] - mesh.points[3 * b];
-  const double dy = mesh.points[3 * a + 1] - mesh.points[3 * b + 1];
-  const double dz = mesh.points[3 * a + 2] - mesh.points[3 * b + 2];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  return distance3(&mesh.points[3 * a], &mesh.points[3 * b]);
 }
 
 /// @return #F x 3 face centroids, (a + b + c) / 3
@@ -32,10 +37,8 @@ std::vector<double> faceCentroids(const TriMesh& mesh);
 
 /// (b - a) x (c - a) of every face (a, b, c): twice its area along its normal, outward for
 /// counter-clockwise faces.
-/// @param[in] progress, steps  forwarded to parallel_for
 /// @return #F x 3
-std::vector<double> faceCrossProducts(
-  const TriMesh& mesh, const Progress& progress = Progress(), int steps = 32);
+std::vector<double> faceCrossProducts(const TriMesh& mesh);
 
 /// @return #F x 3 unit face normals, zero for a degenerate face
 std::vector<double> faceUnitNormals(const TriMesh& mesh);

@@ -8,8 +8,8 @@
 #include "features/input_checks.h"
 #include "features/kmeans.h"
 #include "features/seeded_random.h"
-#include "features/similarity.h"
 #include "features/spectrum.h"
+#include "features/statistics.h"
 
 #include "tc/common/errors.h"
 
@@ -131,6 +131,25 @@ std::vector<double> embed(const Spectrum& s, SpectralEmbedding mode, int& dim)
   return x;
 }
 
+// The faces of the components clustered exactly (at least 2 clusters, at most
+// nystromThreshold faces), or empty when there are none.
+std::vector<uint8_t> exactFaces(const Components& components, int64_t nf, int64_t nystromThreshold)
+{
+  std::vector<uint8_t> exact;
+  for (int64_t c = 0; c < components.count(); ++c)
+  {
+    if (components.clusters[c] >= 2 && components.sizes[c] <= nystromThreshold)
+    {
+      exact.resize(nf, 0);
+      for (int32_t f : components.faces[c])
+      {
+        exact[f] = 1;
+      }
+    }
+  }
+  return exact;
+}
+
 // What every component's clustering reads: the exact graph of eq. 3 and the per-face terms.
 struct SpectralInputs
 {
@@ -156,11 +175,7 @@ Spectrum componentSpectrum(const SpectralInputs& in, const std::vector<int32_t>&
   {
     localId[faces[i]] = static_cast<int32_t>(i);
   }
-  Spectrum spectrum;
-  const LocalMatrix N = normalizedSimilarity(
-    faces, in.exact, localId, in.curvExp, in.normals, in.options, spectrum.degree);
-  largestEigenpairs(N, ne, progress, spectrum.values, spectrum.vectors);
-  return spectrum;
+  return exactSpectrum(faces, in.exact, localId, in.curvExp, in.normals, ne, in.options, progress);
 }
 
 // Clusters the faces of every component into result.clusterId, numbered per component in the
@@ -249,8 +264,10 @@ SpectralClusteringResult spectralClustering(const TriMesh& mesh,
   const Components components = findComponents(adjacent, options.numClusters);
 
   // 3. Eq. 3's terms: |kappa| / sigma_k, and the exact graph (extra edges) with sigma_d.
-  const std::vector<double> curvExp = curvatureExponents(faceMeanCurvature);
-  const ExactGraph exact = buildExactGraph(adjacent, components, options, progress.sub(0.05, 0.2));
+  const std::vector<double> curvExp = detail::curvatureExponents(faceMeanCurvature);
+  const ExactGraph exact =
+    buildExactGraph(adjacent, exactFaces(components, mesh.numTriangles(), options.nystromThreshold),
+      options.extraEdgeFactor, progress.sub(0.05, 0.2));
 
   // 4. Per component: eigenvectors, embedding (section 4.1) and k-means.
   SpectralClusteringResult result;

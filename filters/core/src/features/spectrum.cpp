@@ -35,7 +35,83 @@ constexpr int64_t kDenseEigenLimit = 400;
 // Faces per block of the Nystrom passes: a float block of nystromSamples x this stays small.
 constexpr int64_t kNystromBlock = 1024;
 
+// exp() of anything below this is still a normal double: a face whose curvature is far above
+// sigma_k keeps a tiny positive similarity instead of becoming an isolated node (D = 0).
+constexpr double kMinExponent = -600.0;
+// The same for the float kernel blocks of the Nystrom method (and no denormals in the GEMMs).
+constexpr float kMinExponentFloat = -60.0f;
+
 using RowMajorXf = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Sparse symmetric matrix in CSR form over a component's faces (local ids).
+struct LocalMatrix
+{
+  std::vector<int64_t> offsets; // rows + 1
+  std::vector<int32_t> ids;
+  std::vector<double> values;
+  int64_t rows() const { return static_cast<int64_t>(offsets.size()) - 1; }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Eq. 3 on the dual graph
+
+// N = D^-1/2 W D^-1/2 (eq. 2) over the component's faces, and the degrees D (at least 1e-300).
+LocalMatrix normalizedSimilarity(const std::vector<int32_t>& faces, const ExactGraph& exact,
+  const std::vector<int32_t>& localId, const std::vector<double>& curvExp,
+  const std::vector<double>& normals, const SpectralClusteringOptions& options,
+  std::vector<double>& degree)
+{
+  const DualGraph& graph = exact.graph;
+  const double invNormalSigma =
+    options.exactNormalSigma > 0.0 ? 1.0 / options.exactNormalSigma : 0.0;
+  const int64_t n = static_cast<int64_t>(faces.size());
+  LocalMatrix N;
+  N.offsets.resize(n + 1);
+  N.offsets[0] = 0;
+  for (int64_t i = 0; i < n; ++i)
+  {
+    const int32_t f = faces[i];
+    N.offsets[i + 1] = N.offsets[i] + (graph.offsets[f + 1] - graph.offsets[f]);
+  }
+  N.ids.resize(N.offsets[n]);
+  N.values.resize(N.offsets[n]);
+  degree.assign(n, 0.0);
+  parallel_for(n,
+    [&](int64_t i)
+    {
+      const int32_t f = faces[i];
+      int64_t slot = N.offsets[i];
+      double sum = 0.0;
+      for (int64_t k = graph.offsets[f]; k < graph.offsets[f + 1]; ++k, ++slot)
+      {
+        const int32_t g = graph.ids[k];
+        // Eq. 3: w = beta exp(-(|k_i| + |k_j|) / sigma_k) exp(-dist / sigma_d).
+        // With exactNormalSigma, times exp(-(1 - n_i . n_j) / exactNormalSigma).
+        const double beta = graph.crest[k] ? options.crestBeta : 1.0;
+        const double bend = invNormalSigma > 0.0
+          ? (1.0 - normals[3 * f] * normals[3 * g] - normals[3 * f + 1] * normals[3 * g + 1] -
+              normals[3 * f + 2] * normals[3 * g + 2]) *
+            invNormalSigma
+          : 0.0;
+        const double w = beta *
+          std::exp(std::max(
+            kMinExponent, -(curvExp[f] + curvExp[g]) - graph.dist[k] * exact.invSigmaD - bend));
+        N.ids[slot] = localId[g];
+        N.values[slot] = w;
+        sum += w;
+      }
+      degree[i] = std::max(sum, 1e-300);
+    });
+  parallel_for(n,
+    [&](int64_t i)
+    {
+      for (int64_t k = N.offsets[i]; k < N.offsets[i + 1]; ++k)
+      {
+        N.values[k] /= std::sqrt(degree[i] * degree[N.ids[k]]);
+      }
+    });
+  return N;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Dense eigenpairs
@@ -575,8 +651,7 @@ void extendEigenvectors(const Eigen::MatrixXd& Gs, const Eigen::MatrixXd& gram, 
     },
     progress);
 }
-} // namespace
-
+// The ne largest eigenpairs of n, eigenvalues descending, eigenvectors rows x Ne row-major.
 void largestEigenpairs(const LocalMatrix& n, int ne, const Progress& progress,
   std::vector<double>& values, std::vector<double>& rowMajorVectors)
 {
@@ -603,6 +678,19 @@ void largestEigenpairs(const LocalMatrix& n, int ne, const Progress& progress,
       rowMajorVectors[i * dim + j] = vectors(i, j);
     }
   }
+}
+} // namespace
+
+Spectrum exactSpectrum(const std::vector<int32_t>& faces, const ExactGraph& exact,
+  const std::vector<int32_t>& localId, const std::vector<double>& curvExp,
+  const std::vector<double>& normals, int ne, const SpectralClusteringOptions& options,
+  const Progress& progress)
+{
+  Spectrum out;
+  const LocalMatrix N =
+    normalizedSimilarity(faces, exact, localId, curvExp, normals, options, out.degree);
+  largestEigenpairs(N, ne, progress, out.values, out.vectors);
+  return out;
 }
 
 // Eigenvectors of D^-1/2 W D^-1/2 for a kernel defined for every pair of faces: eq. 3 with

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file spectrum.h
-/// The largest eigenpairs of the normalized similarity D^-1/2 W D^-1/2 (Feng et al. 2010,
-/// section 4.1, eq. 2) of one mesh component: from the exact sparse matrix (Spectra), or from
-/// the Nystrom approximation (Fowlkes et al. 2004) above a face-count threshold. Every Eigen and
+/// The largest eigenpairs of the normalized similarity N = D^-1/2 W D^-1/2 (Feng et al. 2010,
+/// section 4.1, eq. 2 and 3) of one mesh component: from the exact sparse matrix over the dual
+/// graph (Spectra), or from the Nystrom approximation (Fowlkes et al. 2004) above a face-count
+/// threshold. Every Eigen and
 /// Spectra solve of spectral clustering is behind this header, so that one translation unit
 /// compiles them.
 #pragma once
+
+#include "features/dual_graph.h"
 
 #include "tc/common/progress.h"
 #include "tc/features/spectral_clustering.h"
@@ -19,21 +22,6 @@ namespace detail
 {
 namespace spectral
 {
-/// exp() of anything below this is still a normal double: a face whose curvature is far above
-/// sigma_k keeps a tiny positive similarity instead of becoming an isolated node (D = 0).
-constexpr double kMinExponent = -600.0;
-/// The same for the float kernel blocks of the Nystrom method (and no denormals in the GEMMs).
-constexpr float kMinExponentFloat = -60.0f;
-
-/// Sparse symmetric matrix in CSR form over a component's faces (local ids).
-struct LocalMatrix
-{
-  std::vector<int64_t> offsets; ///< rows + 1
-  std::vector<int32_t> ids;
-  std::vector<double> values;
-  int64_t rows() const { return static_cast<int64_t>(offsets.size()) - 1; }
-};
-
 /// Eigenpairs of D^-1/2 W D^-1/2 of one component and the degrees D.
 struct Spectrum
 {
@@ -42,14 +30,20 @@ struct Spectrum
   std::vector<double> degree;  ///< n
 };
 
-/// The ne largest eigenpairs of n (at most its size), eigenvalues descending: a dense solve for
-/// small components, else shift-invert Lanczos on the normalized Laplacian I - n (sparse LDLT),
-/// with Lanczos on n itself as the fallback.
-/// @param[out] values   Ne eigenvalues
-/// @param[out] vectors  rows x Ne eigenvectors, row-major
+/// The exact spectrum of one component: eq. 3 on every edge of the exact graph that leaves
+/// the component's faces (with exactNormalSigma > 0 also times exp(-(1 - n_i . n_j) /
+/// exactNormalSigma)), normalized to N (eq. 2), and its ne largest eigenpairs (at most the
+/// face count): a dense solve for small components, else shift-invert Lanczos on the
+/// normalized Laplacian I - N (sparse LDLT), with Lanczos on N itself as the fallback.
+/// @param[in] faces    global ids of the component's faces, ascending
+/// @param[in] localId  #F index of each face of the component in `faces`
+/// @param[in] curvExp  #F curvatureExponents()
+/// @param[in] normals  #F x 3 unit face normals
 /// @throws std::runtime_error when no eigensolver converges
-void largestEigenpairs(const LocalMatrix& n, int ne, const Progress& progress,
-  std::vector<double>& values, std::vector<double>& vectors);
+Spectrum exactSpectrum(const std::vector<int32_t>& faces, const ExactGraph& exact,
+  const std::vector<int32_t>& localId, const std::vector<double>& curvExp,
+  const std::vector<double>& normals, int ne, const SpectralClusteringOptions& options,
+  const Progress& progress);
 
 /// The Nystrom approximation of the spectrum of one component (see spectrum.cpp for the kernel
 /// and the rank-r extension).

@@ -37,5 +37,21 @@ inline double curvatureSpread(const std::vector<double>& faceMeanCurvature)
   }
   return standardDeviation(sum, squares, static_cast<double>(faceMeanCurvature.size()));
 }
+/// |k_f| / sigma_k per face, the curvature term of eq. 3. All 0 when sigma_k = 0 (a plane, a
+/// sphere): the factor is then the same for every pair and cancels in D^-1/2 W D^-1/2 (no 0/0).
+/// @return #F
+inline std::vector<double> curvatureExponents(const std::vector<double>& faceMeanCurvature)
+{
+  const double sigmaK = curvatureSpread(faceMeanCurvature);
+  std::vector<double> curvExp(faceMeanCurvature.size(), 0.0);
+  if (sigmaK > 0.0)
+  {
+    for (size_t f = 0; f < faceMeanCurvature.size(); ++f)
+    {
+      curvExp[f] = std::abs(faceMeanCurvature[f]) / sigmaK;
+    }
+  }
+  return curvExp;
+}
 } // namespace detail
 } // namespace tc
