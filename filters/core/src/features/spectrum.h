@@ -3,9 +3,8 @@
 /// The largest eigenpairs of the normalized similarity N = D^-1/2 W D^-1/2 (Feng et al. 2010,
 /// section 4.1, eq. 2 and 3) of one mesh component: from the exact sparse matrix over the dual
 /// graph (Spectra), or from the Nystrom approximation (Fowlkes et al. 2004) above a face-count
-/// threshold. Every Eigen and
-/// Spectra solve of spectral clustering is behind this header, so that one translation unit
-/// compiles them.
+/// threshold. Every Eigen and Spectra solve of spectral clustering is behind this header, so
+/// that one translation unit compiles them.
 #pragma once
 
 #include "features/dual_graph.h"
@@ -45,8 +44,10 @@ Spectrum exactSpectrum(const std::vector<int32_t>& faces, const ExactGraph& exac
   const std::vector<double>& normals, int ne, const SpectralClusteringOptions& options,
   const Progress& progress);
 
-/// The Nystrom approximation of the spectrum of one component (see spectrum.cpp for the kernel
-/// and the rank-r extension).
+/// The Nystrom approximation of the spectrum of one component: eq. 3 with the Euclidean
+/// distance of centroids and a normal term in place of beta (nystromNormalSigma), sampled on
+/// nystromSamples faces, extended to all faces in rank nystromRank (Fowlkes et al., section 3;
+/// the details beside the definition).
 /// @param[in] faces  global ids of the component's faces, ascending
 /// @param[in] cen    #F x 3 centroids
 /// @param[in] nrm    #F x 3 unit normals
