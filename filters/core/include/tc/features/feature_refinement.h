@@ -26,14 +26,11 @@ struct FeatureRefinementOptions
   /// A segment is a feature if its mean |H| is at least the mean of the top this-fraction of
   /// vertex |H| values (the paper: 30%).
   double curvatureTopFraction = 0.30;
-  /// Scales that threshold (1 = the paper's rule). 0.7 by default: the paper's rule assumes
-  /// that features are a small part of the mesh, so that the top 30% are feature vertices and
-  /// a feature segment reaches their mean. Where features hold a large share of the vertices
-  /// (cube.off: all 8, |H| 0.86 to 1.15; a cube with 8 x 8 faces per side: 24%), or where the
-  /// estimate varies along a crease (fandisk: |H| of crease vertices mostly 14 to 52), crease
-  /// segments fall below the mean of the top 30%. With 1.0, cube.off keeps 4 of its 12 edges
-  /// and fandisk (24 clusters) finds 84% of its sharp edges; with 0.7, all 12 and 95%, at a
-  /// precision of 0.97 instead of 0.98.
+  /// Scales that threshold (1 = the paper's rule). Below 1 by default: the paper's rule
+  /// assumes that features are a small part of the mesh, so that the top 30% are feature
+  /// vertices and a feature segment reaches their mean. Where features hold a large share of
+  /// the vertices (coarse CAD meshes), or where the estimate varies along a crease, crease
+  /// segments fall below the mean of the top 30%.
   double curvatureThresholdScale = 0.7;
   /// Corners: maxima of |H| within this many rings (the paper: 7 to 10).
   int cornerRings = 8;
@@ -47,15 +44,13 @@ struct FeatureRefinementOptions
   /// The band also holds every face within this many face-adjacency steps of a face that
   /// touches a boundary, whatever bandFraction says. With many clusters or on a coarse mesh
   /// the faces along the boundaries alone exceed 10%, and a band one face thick on each side
-  /// lets the cut move a boundary by one face at most (a 10 x 10 cube whose boundaries run one
-  /// cell off its edges is not repaired).
+  /// lets the cut move a boundary by one face at most.
   int bandRings = 2;
   /// The cuts are computed again from the refined boundaries until no face changes, at most
   /// this many times (1 = the paper's single refinement). Each band face is cut between the two
   /// clusters of its nearest boundary only; near a junction of 3 or more clusters that pair can
   /// be the wrong one, and a face of the third cluster is then left with one of the two until
-  /// a later pass sees the moved boundary (a cube whose boundaries run one cell off its edges:
-  /// 18 faces wrong after 1 pass, none after 8). Later passes stay inside the first band, so
+  /// a later pass sees the moved boundary. Later passes stay inside the first band, so
   /// boundaries move no farther than the paper's band allows.
   int cutPasses = 8;
 
@@ -63,16 +58,11 @@ struct FeatureRefinementOptions
   /// between the normals of faces i and j and sigma_theta its standard deviation over all
   /// interior edges; 0 gives the paper's eq. 4. The estimated |H| is smooth: around a sharp
   /// crease it stays high over 2 to 3 rings and is often highest on the curved side, so eq. 4
-  /// alone moves boundaries that lay exactly on creases off them (fandisk, clusters = the
-  /// patches between its sharp edges, the paper's single pass: 35 faces move, the recall of its
-  /// sharp edges drops from 0.885 to 0.836; a 10 x 10 cube: jagged boundaries are not moved
-  /// onto its edges). The dihedral angle is the curvature concentrated on the edge itself and
-  /// puts the cut on the crease. At 8 its factor on a crease (theta / sigma_theta about 4.5 on
-  /// fandisk and fandisk_large) outweighs the curvature factor; on fandisk_large, whose creases
-  /// are often split over two edges of 30 to 60 degrees, the recall of its sharp edges is 0.74
-  /// with 0, 0.76 with 1 and 0.82 with 8 (24 clusters). On noisy scans theta is mostly noise
-  /// and the refined boundaries are longer (bunny00, 24 clusters: 1923 boundary edges with 0,
-  /// 2496 with 8); few of their segments pass the threshold there.
+  /// alone moves boundaries that lay exactly on creases off them. The dihedral angle is the
+  /// curvature concentrated on the edge itself and puts the cut on the crease; the default
+  /// makes its factor on a sharp crease outweigh the curvature factor. On noisy scans theta is
+  /// mostly noise and the refined boundaries get longer; few of their segments pass the
+  /// threshold there.
   double dihedralWeight = 8.0;
 
   /// Noise floor of the segment (and corner) threshold: it is at least this value divided by
@@ -81,17 +71,16 @@ struct FeatureRefinementOptions
   /// diameter is twice the diagonal, far below any feature. 0 disables the floor.
   double minCurvatureTimesSize = 1.0;
   /// Vertices where three or more kept feature lines meet are corners as well. Where sharp
-  /// creases meet, the |H| estimate straddles the creases (on coarse CAD meshes such as an
-  /// 8-vertex cube every vertex has nearly the same |H|, so an N-ring maximum finds one corner
-  /// of eight), while the meeting of the detected lines locates the corner exactly.
+  /// creases meet, the |H| estimate straddles the creases (on a coarse CAD mesh the corners
+  /// can have nearly the same |H|, and an N-ring maximum then keeps one of several), while the
+  /// meeting of the detected lines locates the corner exactly.
   bool junctionCorners = true;
   /// After the cuts, one-face zig-zags of the boundaries are straightened: a face with two
   /// boundary sides to the same other cluster at a vertex on no other boundary edge joins that
   /// cluster, so the boundary takes the face's third side. A cut runs along mesh edges, so a
   /// boundary across the mesh's grain is a staircase; each step is a sharp turn that the base
   /// complex cannot collapse along the curve (Feng et al. 5.1 keeps feature vertices on their
-  /// curve), and the steps pin hundreds of base vertices (bunny_glmark2: 518 base faces for a
-  /// target of 100 without this, 148 with it). Creases are kept: a step whose sides include
+  /// curve), so the steps pin many base vertices. Creases are kept: a step whose sides include
   /// an edge of at least creaseAngle is only straightened onto an edge that is one as well.
   bool straightenLines = true;
   /// Dihedral angle in degrees from which an edge counts as a crease for straightenLines.
@@ -147,8 +136,7 @@ struct FeatureRefinementResult
 ///
 /// Deterministic: the output does not depend on the number of threads. Components of the mesh
 /// need no special treatment (no dual edge joins them). Cluster ids need not be compact.
-/// Cost: O(#F log #F) plus the max-flows over the band; 0.1 s for 75K faces, 1.3 s for 871K
-/// (2 cores).
+/// Cost: O(#F log #F) plus the max-flows over the band.
 ///
 /// @param[in] mesh               #V x 3 points, #F x 3 triangles
 /// @param[in] clusterId          #F clusters (spectralClustering())

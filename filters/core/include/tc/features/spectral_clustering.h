@@ -48,17 +48,14 @@ struct SpectralClusteringOptions
   double extraEdgeFactor = 2.0;
   /// Exact graph: eq. 3 is multiplied by exp(-(1 - n_i . n_j) / exactNormalSigma), n the unit
   /// normals of the two faces (the Nystrom kernel's normal term, see nystromNormalSigma); 0
-  /// gives the paper's eq. 3. It cuts the graph across sharp creases that carry no crest line:
-  /// with 0.05, the cluster boundaries of fandisk (24 clusters) hold all its edges sharper than
-  /// 45 degrees instead of 89%, and the refined feature lines find 97.5% of them at a precision
-  /// of 0.99 (seeds 1 to 4; 0.93 to 0.95 and 0.96 to 0.97 with 0). Off by default: on
-  /// fandisk_large, whose creases are often split over two edges of 30 to 60 degrees, it
-  /// changes recall and precision (0.82 to 0.86, 0.83 to 0.86 over seeds 1 to 4) no more than
-  /// the seed does; on noisy scans it has not been measured.
+  /// gives the paper's eq. 3. It cuts the graph across sharp creases that carry no crest line
+  /// (small values such as 0.05 put the cluster boundaries of CAD meshes on their sharp edges).
+  /// Off by default: where creases are split over several edges of moderate angle it helps no
+  /// more than a change of seed, and on noisy scans its effect is unknown.
   double exactNormalSigma = 0.0;
   /// Components with more faces than this use the Nystrom method; the others the exact sparse
-  /// graph of eq. 3 (about 1.3 s for 70K faces, 2 s for 90K on 2 cores; time and memory
-  /// grow faster than linearly with the face count: sparse Cholesky factorization).
+  /// graph of eq. 3, whose time and memory grow faster than linearly with the face count
+  /// (sparse Cholesky factorization).
   int64_t nystromThreshold = 100000;
   /// Nystrom: number of sampled faces m (uniformly among the component's faces). Keep it well
   /// above numClusters (tens of samples per cluster); time grows with m.
