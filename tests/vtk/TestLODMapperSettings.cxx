@@ -2,9 +2,10 @@
 // tcLODMapper under the settings a VTK user can choose, on the atlas of the bundled bunny: each
 // renders into its own 240 x 240 image, compared with testing-data/baselines/
 // TestLODMapperSettings_<setting>.png, or is refused with a warning; the test fails on any error
-// in VTK's log (a shader that does not compile, a link error) and on any warning it did not ask
-// for. Then the hardware selector: every picked cell lies on the triangle that LocateCell names,
-// at the level the chart table and the frame's levels give it.
+// in VTK's log (a shader that does not compile, a link error), on any warning it did not ask
+// for, and on an OpenGL error left after the render. Then the hardware selector: every picked
+// cell lies on the triangle that LocateCell names, at the level the chart table and the frame's
+// levels give it.
 #include "tcGeometryImages.h"
 #include "tcLODMapper.h"
 #include "tcTestUtilities.h"
@@ -33,6 +34,7 @@
 #include <vtkRenderer.h>
 #include <vtkShaderProperty.h>
 #include <vtkTexture.h>
+#include <vtk_glew.h>
 
 #include <algorithm>
 #include <array>
@@ -114,6 +116,19 @@ bool MatchesSettingBaseline(
   window->Render();
   return vtkRegressionTester::Test(static_cast<int>(pointers.size()), pointers.data(), window,
            0.05) == vtkRegressionTester::PASSED;
+}
+
+/// OpenGL errors left after the window's last render (0 when none): VTK reports only those it
+/// checks for, in debug builds.
+unsigned int GLErrors(vtkRenderWindow* window)
+{
+  window->MakeCurrent();
+  unsigned int count = 0;
+  while (glGetError() != GL_NO_ERROR && count < 100)
+  {
+    ++count;
+  }
+  return count;
 }
 
 /// A setting: what it changes in a fresh scene, and the warning it must raise ("" for none).
@@ -239,17 +254,18 @@ bool CheckSettings(int argc, char* argv[], vtkAlgorithmOutput* atlas, tcLogWatch
     scene.renderer->ResetCamera();
     const std::string baseline = setting.baseline.empty() ? setting.name : setting.baseline;
     const bool image = MatchesSettingBaseline(argc, argv, scene.window, baseline);
+    const unsigned int glErrors = GLErrors(scene.window);
     const bool warned = setting.warning.empty()
       ? log->Warnings.empty()
       : log->Warnings.find(setting.warning) != std::string::npos;
     const bool peeled =
       setting.name != "opacity_depth_peeling" || scene.renderer->GetLastRenderingUsedDepthPeeling();
-    std::printf("setting %-22s image %s, %s, %s%s\n", setting.name.c_str(),
-      image ? "matches" : "DIFFERS", log->Errors.empty() ? "no error" : "ERRORS",
+    std::printf("setting %-22s image %s, %s, %u OpenGL errors, %s%s\n", setting.name.c_str(),
+      image ? "matches" : "DIFFERS", log->Errors.empty() ? "no error" : "ERRORS", glErrors,
       setting.warning.empty() ? (warned ? "no warning" : "UNEXPECTED WARNING")
                               : (warned ? "refused with a warning" : "NO WARNING"),
       peeled ? "" : ", DEPTH PEELING NOT USED");
-    ok = ok && image && log->Errors.empty() && warned && peeled;
+    ok = ok && image && log->Errors.empty() && glErrors == 0 && warned && peeled;
     if (setting.name == "user_shader_property")
     {
       // The mapper's replacements do not go into the user's property.
