@@ -1,11 +1,11 @@
 //VTK::CustomBegin::Impl
   // Which chart, at which level, stitched to which neighbour levels (tc::LodDrawList).
-  int tcIndex = tcDrawOffset + gl_InstanceID * tcCopies + int(vertexMC.z + 0.5);
+  int tcIndex = tcDrawOffset + gl_InstanceID * tcCopies + int(tcGridMC().z + 0.5);
   // The last instance of a draw may have copies beyond the level's entries: they collapse.
   bool tcPadding = tcIndex >= tcDrawEnd;
   ivec4 tcEntry = texelFetch(tcDrawList, tcPadding ? tcDrawOffset : tcIndex);
   ivec3 tcNeighbor = ivec3((tcEntry.z >> 4) & 15, (tcEntry.z >> 8) & 15, (tcEntry.z >> 12) & 15);
-  ivec2 tcGrid = ivec2(vertexMC.xy + 0.5);
+  ivec2 tcGrid = ivec2(tcGridMC().xy + 0.5);
   ivec2 tcSample = tcStitch(tcLevel, tcNeighbor, tcGrid);
   // tc::atlasTexel: the chart's level-n samples sit in image maxLevel - n, at origin + (i, j),
   // or origin - (i, j) for a chart packed turned by 180 degrees (negative stride).
@@ -22,6 +22,7 @@
                            : vec4(dot(tcRow0, tcP), dot(tcRow1, tcP), dot(tcRow2, tcP), 1.0);
   // Instance transforms are rigid with a uniform scale, so their 3 x 3 part turns normals too.
   tcNormalMC = vec3(dot(tcRow0.xyz, tcN), dot(tcRow1.xyz, tcN), dot(tcRow2.xyz, tcN));
+  tcEntryVSOutput = tcPadding ? -1 : tcIndex;
   tcCaptureVSOutput = vec4(tcPositionMC.xyz, tcPadding ? -1.0 : float(tcEntry.x));
   tcCaptureGridVSOutput = vec4(vec2(tcGrid), float(tcLevel), float(tcEntry.y));
   float tcScaled = clamp((tcSampleValue.w - tcRange.x) / max(tcRange.y - tcRange.x, 1e-30), 0.0, 1.0);

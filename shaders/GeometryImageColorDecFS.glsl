@@ -1,3 +1,8 @@
 //VTK::Normal::Dec
 in vec3 tcColorVSOutput;
+flat in int tcEntryVSOutput;
 uniform int tcColorMode;
+uniform isamplerBuffer tcDrawList;
+uniform int tcGridPrimitives;        // primitives of one chart's grid at this draw's level
+uniform int tcPrimitivesPerTriangle; // 1 (surface), 3 (wireframe: edges; points: corners)
+uniform int tcPickHigh;              // 1 in the selector's pass of the cell ids' high 24 bits

@@ -6,7 +6,7 @@ uniform samplerBuffer tcPositions;  // one texel per atlas texel of every image:
 uniform samplerBuffer tcNormals;    // the same for the normal image
 uniform isamplerBuffer tcOrigins;   // per (chart, image): (texel of sample (0, 0), signed row stride)
 uniform isamplerBuffer tcCharts;    // per chart: (first origin, maxLevel, 0, 0)
-uniform isamplerBuffer tcDrawList;  // per drawn (instance, chart): (chart, instance, levels, 0)
+uniform isamplerBuffer tcDrawList;  // per drawn (instance, chart): (chart, instance, levels, cell id)
 uniform samplerBuffer tcInstances;  // per instance: the rows of its 3 x 4 transform
 uniform int tcLevel;                // the level of every chart of this draw call
 uniform int tcDrawOffset;           // first draw-list entry of this draw call
@@ -20,9 +20,21 @@ uniform vec2 tcRange;
 out vec3 tcColorVSOutput;
 out vec4 tcCaptureVSOutput;   // model position and chart: read back by transform feedback
 out vec4 tcCaptureGridVSOutput; // (i, j, level, instance) of the same vertex
+flat out int tcEntryVSOutput;   // the draw-list entry (the picking pass's cell ids), -1 padding
 
+// The sample's position and normal, computed first in main (GeometryImageBeginVS.glsl).
 vec4 tcPositionMC;
 vec3 tcNormalMC;
+
+// The grid sample (i, j, copy) itself. From here on vertexMC names the sample's position, so
+// that VTK's own code for every setting (lighting or not, clipping planes, flat normals, edges,
+// depth peeling, picking) transforms the surface and not the grid; normalMC follows in
+// GeometryImageNormalVS.glsl, after VTK declares it.
+vec4 tcGridMC()
+{
+  return vertexMC;
+}
+#define vertexMC tcPositionMC
 
 // Eq. (8) of Feng et al.: a vertex on side k of a chart at level n whose neighbour across k is at
 // a coarser level m moves to parameter t - (t mod 2^(n - m)) of the same side; the rule and its

@@ -264,28 +264,4 @@ void ViewLevels(vtkRenderer* ren, vtkActor* act, const tc::LodCharts& charts,
     tc::Progress(), 1);
 }
 
-void AddBoxBounds(const tc::AtlasChart& chart, const double* t, double bounds[6])
-{
-  const double* c0 = chart.box.data();
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    double p[3] = { c0[0], c0[1], c0[2] };
-    for (int k = 0; k < 3; ++k)
-    {
-      if (corner & (1 << k))
-      {
-        for (int x = 0; x < 3; ++x)
-        {
-          p[x] += chart.box[static_cast<size_t>(3 + 3 * k + x)] - c0[x];
-        }
-      }
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      const double v = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
-      bounds[2 * r] = std::min(bounds[2 * r], v);
-      bounds[2 * r + 1] = std::max(bounds[2 * r + 1], v);
-    }
-  }
-}
 } // namespace tcvtk::lod

@@ -2,8 +2,8 @@
 /**
  * @file tcLODAtlasData.h
  * @brief What tcLODMapper computes on the CPU (Feng et al. 2010, section 6): the grid vertex
- * buffer every chart shares, the atlas packed for the shader's buffer textures, each frame's
- * levels, and the bounds of the drawn boxes. Private to the Rendering module; no OpenGL here.
+ * buffer every chart shares, the atlas packed for the shader's buffer textures, and each frame's
+ * levels. Private to the Rendering module; no OpenGL here.
  */
 #ifndef tcLODAtlasData_h
 #define tcLODAtlasData_h
@@ -77,9 +77,6 @@ void ViewLevels(vtkRenderer* ren, vtkActor* act, const tc::LodCharts& charts,
   const std::vector<double>& instances, const tc::LodOptions& options, size_t nc,
   std::vector<int32_t>& levels);
 
-/// Widens `bounds` (xmin, xmax, ymin, ...) by the 8 corners of `chart`'s oriented box (c0 and
-/// its three neighbours c0 + a_k) transformed by the row-major instance matrix `t`.
-void AddBoxBounds(const tc::AtlasChart& chart, const double* t, double bounds[6]);
 } // namespace tcvtk::lod
 
 #endif

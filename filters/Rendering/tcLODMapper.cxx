@@ -9,13 +9,17 @@
 
 #include "tcGeometryImageBeginVS.h"
 #include "tcGeometryImageColorDecFS.h"
+#include "tcGeometryImageColorDecGS.h"
 #include "tcGeometryImageColorFS.h"
+#include "tcGeometryImageColorGS.h"
 #include "tcGeometryImageDecVS.h"
 #include "tcGeometryImageNormalVS.h"
-#include "tcGeometryImagePositionVS.h"
+#include "tcGeometryImagePickFS.h"
 
 #include <vtkActor.h>
+#include <vtkCommand.h>
 #include <vtkFloatArray.h>
+#include <vtkHardwareSelector.h>
 #include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
@@ -27,7 +31,6 @@
 #include <vtkOpenGLPolyDataMapper.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
-#include <vtkOpenGLShaderProperty.h>
 #include <vtkOpenGLState.h>
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkOpenGLVertexBufferObject.h>
@@ -35,9 +38,11 @@
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarsToColors.h>
+#include <vtkShader.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureUnitManager.h>
 #include <vtkTransformFeedback.h>
+#include <vtkWeakPointer.h>
 #include <vtk_glew.h>
 
 #include <algorithm>
@@ -45,6 +50,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -107,43 +113,40 @@ struct BufferTexture
   }
 };
 
-/// The shader replacements of shaders/ (STYLE.md 7), as (vertex?, tag, replace first, text).
+/// The shader replacements of shaders/ (STYLE.md 7): (stage, VTK tag, text). Each text but the
+/// picking one starts with its tag again, so that VTK's own code still goes there (after ours
+/// for declarations and the begin of main, before it for the colour). They are applied by the
+/// grid mapper (ReplaceShaderValues below) and not through the actor's vtkShaderProperty, which
+/// is the user's: replacements of their own there still apply, before ours.
 struct Replacement
 {
-  bool vertex;
+  vtkShader::Type stage;
   const char* tag;
   const char* text;
 };
-const std::array<Replacement, 6> kReplacements{ {
-  { true, "//VTK::PositionVC::Dec", tcGeometryImageDecVS },
-  { true, "//VTK::CustomBegin::Impl", tcGeometryImageBeginVS },
-  { true, "//VTK::Normal::Impl", tcGeometryImageNormalVS },
-  { true, "//VTK::PositionVC::Impl", tcGeometryImagePositionVS },
-  { false, "//VTK::Normal::Dec", tcGeometryImageColorDecFS },
-  { false, "//VTK::Normal::Impl", tcGeometryImageColorFS },
+const std::array<Replacement, 7> kReplacements{ {
+  { vtkShader::Vertex, "//VTK::PositionVC::Dec", tcGeometryImageDecVS },
+  { vtkShader::Vertex, "//VTK::Light::Dec", tcGeometryImageNormalVS },
+  { vtkShader::Vertex, "//VTK::CustomBegin::Impl", tcGeometryImageBeginVS },
+  { vtkShader::Geometry, "//VTK::Color::Dec", tcGeometryImageColorDecGS },
+  { vtkShader::Geometry, "//VTK::Color::Impl", tcGeometryImageColorGS },
+  { vtkShader::Fragment, "//VTK::Normal::Dec", tcGeometryImageColorDecFS },
+  { vtkShader::Fragment, "//VTK::Color::Impl", tcGeometryImageColorFS },
 } };
 
-/// Adds the replacements to the actor's shader property unless it has them already (adding
-/// them again would modify the property and rebuild the shaders every frame).
-void InstallReplacements(vtkActor* actor)
+/// Applies one replacement (its first occurrence) to a stage's source, when that has the tag.
+void Substitute(std::map<vtkShader::Type, vtkShader*>& shaders, vtkShader::Type stage,
+  const char* tag, const char* text)
 {
-  auto* property = vtkOpenGLShaderProperty::SafeDownCast(actor->GetShaderProperty());
-  if (!property)
+  vtkShader* shader = shaders[stage];
+  if (!shader)
   {
     return;
   }
-  const auto& present = property->GetAllShaderReplacements();
-  for (const Replacement& r : kReplacements)
+  std::string source = shader->GetSource();
+  if (vtkShaderProgram::Substitute(source, tag, text, false))
   {
-    vtkShader::ReplacementSpec spec;
-    spec.OriginalValue = r.tag;
-    spec.ShaderType = r.vertex ? vtkShader::Vertex : vtkShader::Fragment;
-    spec.ReplaceFirst = true;
-    auto found = present.find(spec);
-    if (found == present.end() || found->second.Replacement != r.text)
-    {
-      property->AddShaderReplacement(spec.ShaderType, r.tag, true, r.text, false);
-    }
+    shader->SetSource(source);
   }
 }
 
@@ -177,9 +180,20 @@ protected:
   }
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   void UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void ReplaceShaderValues(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  void ReplaceShaderPicking(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  // The grid has no texture coordinates: the actor's textures are left out (tcLODMapper warns).
+  bool HaveTextures(vtkActor*) override { return false; }
+  unsigned int GetNumberOfTextures(vtkActor*) override { return 0; }
+  std::vector<std::pair<vtkTexture*, std::string>> GetTextures(vtkActor*) override { return {}; }
 
 private:
+  bool Capturing(vtkRenderer* ren, vtkActor* act);
+  void LinkCapture(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act);
   int UploadColorTable(std::array<double, 2>& range);
+  void SetFrameUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkActor* act);
   size_t BeginCapture(GLenum mode);
   void DrawLevels(vtkShaderProgram* program, GLenum mode, size_t perTriangle);
   void EndCapture(size_t vertices);
@@ -225,6 +239,14 @@ struct tcLODMapper::Internals
   vtkNew<vtkTransformFeedback> capture;
   vtkNew<vtkFloatArray> captured;
 
+  /// The window whose context holds the buffer textures (and the grid mapper's buffers), and
+  /// the observer that frees them before that window goes.
+  vtkWeakPointer<vtkOpenGLRenderWindow> window;
+  unsigned long deleteObserver = 0;
+  bool warnedTextures = false;
+  bool warnedPointSelection = false;
+  bool warnedCapture = false;
+
   double bounds[6] = { 0, -1, 0, -1, 0, -1 };
   vtkTimeStamp boundsTime;
 };
@@ -244,6 +266,14 @@ tcLODMapper::tcLODMapper()
 
 tcLODMapper::~tcLODMapper()
 {
+  Internals& in = *this->Internal;
+  if (in.window)
+  {
+    vtkOpenGLRenderWindow* window = in.window;
+    window->PushContext();
+    this->ReleaseGraphicsResources(window);
+    window->PopContext();
+  }
   this->SetColorAttribute(nullptr);
 }
 
@@ -528,7 +558,8 @@ void tcLODMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-  InstallReplacements(act);
+  this->WarnAboutSettings(ren, act);
+  this->UseWindow(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()));
   this->UploadAtlas(ren);
   this->SelectLevels(ren, act);
   tcLODGridMapper* grid = this->Internal->gridMapper;
@@ -537,32 +568,167 @@ void tcLODMapper::Render(vtkRenderer* ren, vtkActor* act)
   grid->Render(ren, act);
 }
 
-void tcLODGridMapper::UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+void tcLODMapper::WarnAboutSettings(vtkRenderer* ren, vtkActor* act)
 {
-  this->Superclass::UpdateShaders(cellBO, ren, act);
-  if (!this->Owner->CaptureVertices || !cellBO.Program ||
-    cellBO.Program->GetTransformFeedback() == this->Owner->Internal->capture.Get())
+  Internals& in = *this->Internal;
+  vtkProperty* property = act->GetProperty();
+  if (!in.warnedTextures && (act->GetTexture() || property->GetNumberOfTextures() > 0))
+  {
+    vtkWarningMacro("The actor has a texture, which tcLODMapper does not draw: an atlas has no "
+                    "texture coordinates. Colour it by ColorMode and ColorAttribute instead.");
+    in.warnedTextures = true;
+  }
+  vtkHardwareSelector* selector = ren->GetSelector();
+  if (!in.warnedPointSelection && selector &&
+    selector->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    vtkWarningMacro("tcLODMapper draws nothing for a point selection: grid samples are no "
+                    "points of a dataset. Select cells (vtkDataObject::FIELD_ASSOCIATION_CELLS) "
+                    "and map each cell id to its chart and level with LocateCell.");
+    in.warnedPointSelection = true;
+  }
+}
+
+void tcLODMapper::UseWindow(vtkOpenGLRenderWindow* window)
+{
+  Internals& in = *this->Internal;
+  if (in.window == window)
   {
     return;
   }
-  // Transform feedback needs its varyings named before the program links: link it again with
-  // them, then set what the first link's uniforms and vertex attributes held.
+  // Another window: its context shares nothing with the last one, so what that one holds is
+  // freed there and everything goes up again here (each switch costs a full upload).
+  if (in.window)
+  {
+    vtkOpenGLRenderWindow* previous = in.window;
+    previous->PushContext();
+    this->ReleaseGraphicsResources(previous);
+    previous->PopContext();
+  }
+  in.window = window;
+  in.deleteObserver =
+    window->AddObserver(vtkCommand::DeleteEvent, this, &tcLODMapper::WindowDeleted);
+}
+
+void tcLODMapper::WindowDeleted(vtkObject* window, unsigned long, void*)
+{
+  // Before the window's destructor, while its context still exists.
+  auto* gl = static_cast<vtkOpenGLRenderWindow*>(window);
+  gl->PushContext();
+  this->ReleaseGraphicsResources(gl);
+  gl->PopContext();
+}
+
+void tcLODGridMapper::ReplaceShaderValues(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
+{
+  for (const Replacement& r : kReplacements)
+  {
+    Substitute(shaders, r.stage, r.tag, r.text);
+  }
+  this->Superclass::ReplaceShaderValues(shaders, ren, act);
+}
+
+void tcLODGridMapper::ReplaceShaderPicking(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
+{
+  // The cell passes write tc::LodDrawList's cell ids (VTK's count grid triangles).
+  if (this->LastSelectionState == vtkHardwareSelector::CELL_ID_LOW24 ||
+    this->LastSelectionState == vtkHardwareSelector::CELL_ID_HIGH24)
+  {
+    Substitute(shaders, vtkShader::Fragment, "//VTK::Picking::Impl", tcGeometryImagePickFS);
+  }
+  this->Superclass::ReplaceShaderPicking(shaders, ren, act);
+}
+
+bool tcLODGridMapper::Capturing(vtkRenderer* ren, vtkActor* act)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  if (!this->Owner->CaptureVertices)
+  {
+    return false;
+  }
+  // Transform feedback reads the vertex shader's outputs, which a geometry shader hides.
+  if (this->DrawingEdges(ren, act) || this->HaveWideLines(ren, act))
+  {
+    if (!in.warnedCapture)
+    {
+      vtkWarningMacro("CaptureVertices reads nothing back while the actor draws edges or wide "
+                      "lines (a geometry shader); turn EdgeVisibility off and LineWidth to 1.");
+      in.warnedCapture = true;
+    }
+    return false;
+  }
+  return true;
+}
+
+void tcLODGridMapper::UpdateShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  // vtkOpenGLPolyDataMapper::UpdateShaders (VTK 9.2), except that a program that does not build
+  // (a user's replacement that does not compile) leaves no program and nothing drawn: VTK's
+  // dereferences the missing program on the next try.
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  window->GetShaderCache()->ReadyShaderProgram(cellBO.Program, this->Owner->Internal->capture);
-  cellBO.VAO->ReleaseGraphicsResources();
-  cellBO.ShaderSourceTime.Modified();
+  cellBO.VAO->Bind();
+  this->LastBoundBO = &cellBO;
+  if (this->GetNeedToRebuildShaders(cellBO, ren, act))
+  {
+    vtkNew<vtkShader> vertex, geometry, fragment;
+    vertex->SetType(vtkShader::Vertex);
+    geometry->SetType(vtkShader::Geometry);
+    fragment->SetType(vtkShader::Fragment);
+    std::map<vtkShader::Type, vtkShader*> shaders{ { vtkShader::Vertex, vertex },
+      { vtkShader::Geometry, geometry }, { vtkShader::Fragment, fragment } };
+    this->BuildShaders(shaders, ren, act);
+    vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(shaders);
+    if (program != cellBO.Program || (program && program->GetMTime() > cellBO.AttributeUpdateTime))
+    {
+      cellBO.Program = program;
+      cellBO.VAO->ReleaseGraphicsResources();
+    }
+    cellBO.ShaderSourceTime.Modified();
+  }
+  else if (cellBO.Program)
+  {
+    window->GetShaderCache()->ReadyShaderProgram(cellBO.Program);
+    if (cellBO.Program->GetMTime() > cellBO.AttributeUpdateTime)
+    {
+      cellBO.VAO->ReleaseGraphicsResources();
+    }
+  }
+  if (!cellBO.Program)
+  {
+    return;
+  }
+  this->LinkCapture(cellBO, ren, act);
   this->SetCustomUniforms(cellBO, act);
   this->SetMapperShaderParameters(cellBO, ren, act);
   this->SetPropertyShaderParameters(cellBO, ren, act);
   this->SetCameraShaderParameters(cellBO, ren, act);
   this->SetLightingShaderParameters(cellBO, ren, act);
+  this->InvokeEvent(vtkCommand::UpdateShaderEvent, cellBO.Program);
+}
+
+void tcLODGridMapper::LinkCapture(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  if (!this->Capturing(ren, act) ||
+    cellBO.Program->GetTransformFeedback() == this->Owner->Internal->capture.Get())
+  {
+    return;
+  }
+  // Transform feedback needs its varyings named before the program links: link it again with
+  // them (the uniforms and vertex attributes are set after this).
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  window->GetShaderCache()->ReadyShaderProgram(cellBO.Program, this->Owner->Internal->capture);
+  cellBO.VAO->ReleaseGraphicsResources();
+  cellBO.ShaderSourceTime.Modified();
 }
 
 int tcLODGridMapper::UploadColorTable(std::array<double, 2>& range)
 {
   tcLODMapper::Internals& in = *this->Owner->Internal;
   tcLODMapper* owner = this->Owner;
-  int colorMode = owner->ColorMode;
+  // ScalarVisibility off draws the actor's colour, as it does for vtkPolyDataMapper.
+  int colorMode = owner->GetScalarVisibility() ? owner->ColorMode : tcLODMapper::ColorByActor;
   range = in.attributeRange;
   if (colorMode == tcLODMapper::ColorByAttribute)
   {
@@ -571,6 +737,7 @@ int tcLODGridMapper::UploadColorTable(std::array<double, 2>& range)
       colorMode = tcLODMapper::ColorByActor;
     }
     vtkScalarsToColors* table = owner->GetLookupTable();
+    table->Build(); // a lookup table maps nothing before it is built
     if (owner->GetUseLookupTableScalarRange())
     {
       range = { table->GetRange()[0], table->GetRange()[1] };
@@ -613,6 +780,10 @@ void tcLODGridMapper::DrawLevels(vtkShaderProgram* program, GLenum mode, size_t 
 {
   tcLODMapper::Internals& in = *this->Owner->Internal;
   const size_t levels = std::min(in.list.levelStart.size(), in.gridTriangleStart.size()) - 1;
+  // Primitives per grid triangle: its 3 indices make 1 triangle, 3 points or (6) 3 lines.
+  const size_t perPrimitive = mode == GL_TRIANGLES ? 3 : mode == GL_LINES ? 2 : 1;
+  const int primitivesPerTriangle = static_cast<int>(perTriangle / perPrimitive);
+  program->SetUniformi("tcPrimitivesPerTriangle", primitivesPerTriangle);
   for (size_t n = 0; n < levels; ++n)
   {
     const int64_t first = in.list.levelStart[n];
@@ -626,6 +797,7 @@ void tcLODGridMapper::DrawLevels(vtkShaderProgram* program, GLenum mode, size_t 
     program->SetUniformi("tcDrawOffset", static_cast<int>(first));
     program->SetUniformi("tcDrawEnd", static_cast<int>(first + count));
     program->SetUniformi("tcCopies", copies);
+    program->SetUniformi("tcGridPrimitives", primitivesPerTriangle << (2 * n));
     const size_t offset = perTriangle * static_cast<size_t>(in.gridTriangleStart[n]);
     const size_t indices =
       perTriangle * static_cast<size_t>(in.gridTriangleStart[n + 1] - in.gridTriangleStart[n]);
@@ -648,13 +820,43 @@ void tcLODGridMapper::EndCapture(size_t vertices)
   in.capture->ReleaseBufferData();
 }
 
+void tcLODGridMapper::SetFrameUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkActor* act)
+{
+  tcLODMapper::Internals& in = *this->Owner->Internal;
+  std::array<double, 2> range;
+  const int colorMode = this->UploadColorTable(range);
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const std::array<BufferTexture*, 7> textures = in.textures();
+  for (size_t t = 0; t < textures.size(); ++t)
+  {
+    program->SetUniformi(kTextureUniforms[t], textures[t]->Activate(window));
+  }
+  program->SetUniformi("tcStitching", this->Owner->Stitching ? 1 : 0);
+  program->SetUniformi("tcColorMode", colorMode);
+  const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
+  program->SetUniform2f("tcRange", rangeValues);
+  program->SetUniformi(
+    "tcPickHigh", this->LastSelectionState == vtkHardwareSelector::CELL_ID_HIGH24 ? 1 : 0);
+  vtkHardwareSelector* selector = ren->GetSelector();
+  if (selector)
+  {
+    // The selector renders the high 24 bits of the ids only when some id needs them.
+    selector->UpdateMaximumCellId(static_cast<vtkIdType>(in.list.triangles) - 1);
+  }
+  if (act->GetProperty()->GetRepresentation() == VTK_WIREFRAME && !this->HaveWideLines(ren, act))
+  {
+    window->GetState()->vtkglLineWidth(act->GetProperty()->GetLineWidth());
+  }
+}
+
 void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   tcLODMapper::Internals& in = *this->Owner->Internal;
-  tcLODMapper* owner = this->Owner;
   vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
   const int64_t gridTriangles = in.gridTriangleStart.back();
-  if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty())
+  vtkHardwareSelector* selector = ren->GetSelector();
+  if (tris.IBO->IndexCount == 0 || gridTriangles == 0 || in.list.entries.empty() ||
+    (selector && selector->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS))
   {
     return;
   }
@@ -674,31 +876,20 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-
-  // The colour table, the buffer textures and the uniforms every level shares.
-  std::array<double, 2> range;
-  const int colorMode = this->UploadColorTable(range);
-  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  const std::array<BufferTexture*, 7> textures = in.textures();
-  for (size_t t = 0; t < textures.size(); ++t)
-  {
-    program->SetUniformi(kTextureUniforms[t], textures[t]->Activate(window));
-  }
-  program->SetUniformi("tcStitching", owner->Stitching ? 1 : 0);
-  program->SetUniformi("tcColorMode", colorMode);
-  const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
-  program->SetUniform2f("tcRange", rangeValues);
+  this->SetFrameUniforms(program, ren, act);
 
   // One instanced draw per level, read back by transform feedback when asked.
-  const size_t captured = owner->CaptureVertices ? this->BeginCapture(mode) : 0;
+  const bool capturing = this->Capturing(ren, act);
+  const size_t captured = capturing ? this->BeginCapture(mode) : 0;
   tris.IBO->Bind();
   this->DrawLevels(program, mode, perTriangle);
   tris.IBO->Release();
-  if (owner->CaptureVertices)
+  if (capturing)
   {
     this->EndCapture(captured);
   }
-  for (BufferTexture* texture : textures)
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  for (BufferTexture* texture : in.textures())
   {
     texture->Deactivate(window);
   }
@@ -714,31 +905,51 @@ double* tcLODMapper::GetBounds()
   }
   if (in.boundsTime < in.grid->GetMTime() || in.boundsTime < in.instanceTime)
   {
-    double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (size_t m = 0; m < in.instances.size(); m += 16)
+    try
     {
-      for (const tc::AtlasChart& chart : in.atlas.charts)
-      {
-        AddBoxBounds(chart, in.instances.data() + m, b);
-      }
+      const std::array<double, 6> b = tc::drawnBounds(in.atlas, in.instances);
+      std::copy(b.begin(), b.end(), in.bounds);
     }
-    std::copy(b, b + 6, in.bounds);
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("Cannot bound the atlas: " << e.what() << ".");
+      vtkMath::UninitializeBounds(in.bounds);
+    }
     in.boundsTime.Modified();
   }
   std::copy(in.bounds, in.bounds + 6, this->Bounds);
   return this->Bounds;
 }
 
+bool tcLODMapper::LocateCell(vtkIdType cellId, vtkIdType location[4]) const
+{
+  const tc::LodTriangle t = tc::locateTriangle(this->Internal->list, cellId);
+  location[0] = t.instance;
+  location[1] = t.chart;
+  location[2] = t.level;
+  location[3] = static_cast<vtkIdType>(t.triangle);
+  return t.chart >= 0;
+}
+
 void tcLODMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& in = *this->Internal;
+  // The resources live in one window's context: a request from another window finds none.
+  if (window && in.window && window != in.window)
+  {
+    return;
+  }
   for (BufferTexture* texture : in.textures())
   {
     texture->Release();
   }
   in.capture->ReleaseGraphicsResources();
   in.gridMapper->ReleaseGraphicsResources(window);
+  if (in.window)
+  {
+    in.window->RemoveObserver(in.deleteObserver);
+  }
+  in.window = nullptr;
   in.uploadWindow = nullptr;
   in.haveSelection = false;
 }

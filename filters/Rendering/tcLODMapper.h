@@ -21,15 +21,30 @@
  * row-major, model to actor coordinates; rigid with a uniform scale so that normals follow).
  * Without it the atlas is drawn once, untransformed.
  *
- * Representations: surface and wireframe (the actor's property). Colour: the actor's, or per
- * chart, per level, or by an attribute of the atlas through the lookup table (ColorMode,
- * ColorAttribute); lighting uses the atlas's normal image.
+ * Every setting of the actor applies (docs/lod-mapper.md lists them): lighting on or off, flat,
+ * Gouraud or Phong interpolation, surface, wireframe, points and surface with edges, opacity
+ * with or without depth peeling, backface and frontface culling, clipping planes, and the
+ * user's own replacements in the actor's vtkShaderProperty (applied before the mapper's, which
+ * live in its grid mapper, not in that property). Textures are not drawn (an atlas has no
+ * texture coordinates; a warning says so).
+ *
+ * Colour: the actor's, or per chart, per level, or by an attribute of the atlas through the
+ * lookup table (ColorMode, ColorAttribute), while ScalarVisibility is on (the default); off, the
+ * actor's colour. Lighting uses the atlas's normal image.
+ *
+ * Selection: with vtkHardwareSelector over cells, a picked cell id is the LOD draw list's
+ * (tc::LodDrawList): LocateCell maps it to the instance, chart, level and grid triangle of the
+ * last frame drawn. A point selection draws nothing (a warning says so).
+ *
+ * Bounds (GetBounds, hence ResetCamera): those of the drawn surface, from the finest samples in
+ * every instance (tc::drawnBounds); LOD selection and culling use the charts' oriented boxes.
  *
  * Statistics of the last frame: GetTrianglesDrawn, GetChartsDrawn, GetChartsAtLevel,
  * GetSelectionSeconds, GetDrawListSeconds.
  *
- * One mapper draws into one render window (its buffer textures belong to that window's
- * context); give each window its own mapper, as ParaView's views and the viewer do.
+ * Windows: the buffer textures belong to one window's context at a time. A mapper drawn into
+ * another window frees them in the first and uploads the atlas again (every switch), so a mapper
+ * per window, as ParaView's views and the viewer have, is the fast way to show several.
  */
 #ifndef tcLODMapper_h
 #define tcLODMapper_h
@@ -46,6 +61,8 @@ class vtkDataArray;
 class vtkDataObject;
 class vtkFloatArray;
 class vtkIntArray;
+class vtkObject;
+class vtkOpenGLRenderWindow;
 
 class TRICHARTRENDERING_EXPORT tcLODMapper : public vtkMapper
 {
@@ -164,7 +181,12 @@ public:
   /// Number of charts of the atlas (0 before the first render or update of bounds).
   vtkIdType GetNumberOfCharts() const;
 
-  /// The bounds of every chart's oriented box, in every instance.
+  /// Where a cell id of a hardware selection of the last frame lies: `location` gets the
+  /// instance, the chart, the chart's level and the triangle's index in its level-grid (grid
+  /// order, 0 .. 4^level - 1); false (all -1) when no triangle of the last frame has that id.
+  bool LocateCell(vtkIdType cellId, vtkIdType location[4]) const;
+
+  /// The bounds of the drawn surface: every chart's finest samples, in every instance.
   double* GetBounds() override;
   void GetBounds(double bounds[6]) override { this->vtkAbstractMapper3D::GetBounds(bounds); }
 
@@ -199,6 +221,9 @@ private:
   void ReleaseAtlas();
   void UploadAtlas(vtkRenderer* ren);
   void SelectLevels(vtkRenderer* ren, vtkActor* act);
+  void WarnAboutSettings(vtkRenderer* ren, vtkActor* act);
+  void UseWindow(vtkOpenGLRenderWindow* window);
+  void WindowDeleted(vtkObject* window, unsigned long event, void* data);
 };
 
 #endif

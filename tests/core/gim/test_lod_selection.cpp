@@ -6,9 +6,10 @@
 // projects all 8 corners one by one.
 #include "tc/gim/lod_selection.h"
 
-#include "tc/gim/atlas.h"
 #include "tc/common/errors.h"
+#include "tc/gim/atlas.h"
 
+#include "octahedron_atlas.h"
 #include "view_matrices.h"
 
 #include <gtest/gtest.h>
@@ -359,14 +360,16 @@ TEST(LodDrawList, GroupsByLevelWithNeighbourLevels)
   // Level 0: (0, 1), (1, 1); level 1: (1, 0), (3, 1); level 2: (0, 0), (2, 1); level 3: (3, 0).
   // Absent (-1) and culled neighbours count as the chart's own level.
   const std::vector<int32_t> expected{
-    0, 1, packed(0, 0, 2, 0), 0, //
-    1, 1, packed(0, 0, 1, 2), 0, //
-    1, 0, packed(1, 2, 3, 1), 0, // chart 2 culled in instance 0: side 2 counts as 1
-    3, 1, packed(1, 2, 0, 1), 0, //
-    0, 0, packed(2, 1, 2, 2), 0, // chart 2 culled: side 1 counts as 2; side 2 absent
-    2, 1, packed(2, 1, 0, 0), 0, //
-    3, 0, packed(3, 3, 1, 3), 0, // chart 2 culled: side 0 counts as 3
+    0, 1, packed(0, 0, 2, 0), 84,  //
+    1, 1, packed(0, 0, 1, 2), 85,  //
+    1, 0, packed(1, 2, 3, 1), 16,  // chart 2 culled in instance 0: side 2 counts as 1
+    3, 1, packed(1, 2, 0, 1), 102, //
+    0, 0, packed(2, 1, 2, 2), 0,   // chart 2 culled: side 1 counts as 2; side 2 absent
+    2, 1, packed(2, 1, 0, 0), 86,  //
+    3, 0, packed(3, 3, 1, 3), 20,  // chart 2 culled: side 0 counts as 3
   };
+  // First cell ids, instance by instance and chart by chart: (0, 0) 16 triangles from 0,
+  // (1, 0) 4 from 16, (3, 0) 64 from 20, then instance 1's 1 + 1 + 16 + 4 from 84.
   EXPECT_EQ(list.entries, expected);
   EXPECT_EQ(list.levelStart, (std::vector<int64_t>{ 0, 2, 4, 6, 7 }));
   EXPECT_EQ(list.chartsPerLevel, (std::vector<int64_t>{ 2, 2, 2, 1 }));
@@ -402,6 +405,95 @@ TEST(LodDrawList, RejectsLevelsOutsideTheChartsRange)
   badNeighbour.neighbor[4] = 7;
   const std::vector<int32_t> fine{ 0, 1, 2, 3 };
   EXPECT_THROW(tc::buildDrawList(badNeighbour, fine.data(), 1, list), tc::InputError);
+}
+
+TEST(LodDrawList, EveryCellIdLocatesItsTriangle)
+{
+  const tc::LodCharts charts = fourCharts();
+  const std::vector<int32_t> levels{ 2, 1, -1, 3, 0, 0, 2, 1 };
+  tc::LodDrawList list;
+  tc::buildDrawList(charts, levels.data(), 2, list);
+  // The numbering of lod_selection.h, enumerated directly: instance, chart, grid triangle.
+  int64_t cell = 0;
+  for (int32_t r = 0; r < 2; ++r)
+  {
+    for (int32_t c = 0; c < 4; ++c)
+    {
+      const int32_t level = levels[static_cast<size_t>(4 * r + c)];
+      for (int64_t t = 0; level >= 0 && t < (int64_t(1) << (2 * level)); ++t, ++cell)
+      {
+        const tc::LodTriangle found = tc::locateTriangle(list, cell);
+        EXPECT_EQ(found.instance, r) << "cell " << cell;
+        EXPECT_EQ(found.chart, c) << "cell " << cell;
+        EXPECT_EQ(found.level, level) << "cell " << cell;
+        EXPECT_EQ(found.triangle, t) << "cell " << cell;
+      }
+    }
+  }
+  EXPECT_EQ(cell, list.triangles);
+  for (const int64_t outside : { int64_t(-1), list.triangles, list.triangles + 1000 })
+  {
+    const tc::LodTriangle none = tc::locateTriangle(list, outside);
+    EXPECT_EQ(none.chart, -1);
+    EXPECT_EQ(none.instance, -1);
+    EXPECT_EQ(none.level, -1);
+    EXPECT_EQ(none.triangle, -1);
+  }
+  EXPECT_EQ(tc::locateTriangle(tc::LodDrawList(), 0).chart, -1);
+}
+
+/// The bounds a loop over every finest sample gives, under the row-major matrix `t`.
+std::array<double, 6> sampleBounds(const tc::Atlas& atlas, const double* t)
+{
+  std::array<double, 6> b{ kInf, -kInf, kInf, -kInf, kInf, -kInf };
+  const tc::AtlasImage& image = atlas.images[0];
+  tc::forEachImageSample(atlas, 0,
+    [&](int32_t, int32_t, int32_t, int32_t, size_t texel)
+    {
+      const float* p = image.data[0].data() + 3 * texel;
+      for (size_t r = 0; r < 3; ++r)
+      {
+        const double v = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
+        b[2 * r] = std::min(b[2 * r], v);
+        b[2 * r + 1] = std::max(b[2 * r + 1], v);
+      }
+    });
+  return b;
+}
+
+TEST(LodBounds, AreTheFinestSamplesBoundsInEveryInstance)
+{
+  const tc::Atlas atlas = tctest::octahedronAtlas({ 3, 2, 4, 4, 1, 3, 0, 2 });
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  // Identity; a translation with a scale and an axis swap (the fast path); a turn about z.
+  const std::vector<double> instances{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, //
+    0, 2, 0, 5, 2, 0, 0, -1, 0, 0, -2, 0.25, 0, 0, 0, 1,                               //
+    c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 3, 0, 0, 0, 1 };
+  for (size_t i = 0; i < 3; ++i)
+  {
+    const std::vector<double> one(instances.begin() + 16 * i, instances.begin() + 16 * (i + 1));
+    EXPECT_EQ(tc::drawnBounds(atlas, one), sampleBounds(atlas, one.data())) << "instance " << i;
+  }
+  // The octahedron's vertices are samples: its bounds are exact, [-1, 1] on every axis.
+  EXPECT_EQ(tc::drawnBounds(atlas, { instances.begin(), instances.begin() + 16 }),
+    (std::array<double, 6>{ -1, 1, -1, 1, -1, 1 }));
+  // All three: the union; the turned one reaches x = cos 0.3 (vertex (1, 0, 0)), not the box's.
+  const std::array<double, 6> all = tc::drawnBounds(atlas, instances);
+  EXPECT_EQ(all, (std::array<double, 6>{ -1, 7, -3, 1, -1.75, 4 }));
+  EXPECT_DOUBLE_EQ(sampleBounds(atlas, instances.data() + 32)[1], c);
+}
+
+TEST(LodBounds, EmptyWithoutChartsOrInstancesAndRefuseABrokenLayout)
+{
+  const std::array<double, 6> empty{ 1, -1, 1, -1, 1, -1 };
+  EXPECT_EQ(
+    tc::drawnBounds(tc::Atlas(), { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }), empty);
+  const tc::Atlas atlas = tctest::octahedronAtlas({ 1, 1, 1, 1, 1, 1, 1, 1 });
+  EXPECT_EQ(tc::drawnBounds(atlas, {}), empty);
+  tc::Atlas broken = atlas;
+  broken.images[0].data[0].resize(5);
+  EXPECT_THROW(
+    tc::drawnBounds(broken, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }), tc::InputError);
 }
 
 /// The rules of lod_selection.h in double, with all 8 corners projected one by one.

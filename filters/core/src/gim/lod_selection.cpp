@@ -438,6 +438,7 @@ void placeEntries(const LodCharts& charts, const int32_t* levels, int32_t instan
   const int32_t n = charts.size();
   int32_t* entries = list.entries.data();
   const int32_t* neighbor = charts.neighbor.data();
+  int64_t firstId = 0;
   for (int32_t r = 0; r < instances; ++r)
   {
     const int32_t* row = levels + static_cast<int64_t>(r) * n;
@@ -459,9 +460,74 @@ void placeEntries(const LodCharts& charts, const int32_t* levels, int32_t instan
       e[0] = c;
       e[1] = r;
       e[2] = packed;
-      e[3] = 0;
+      // Cell ids run instance by instance, chart by chart (lod_selection.h).
+      e[3] = firstId <= std::numeric_limits<int32_t>::max() ? static_cast<int32_t>(firstId) : -1;
+      firstId += int64_t(1) << (2 * level);
     }
   }
+}
+
+/// The finest samples of every chart (image 0), xyz each, and their bounds.
+std::vector<float> finestSamples(const Atlas& atlas, std::array<double, 6>& bounds)
+{
+  validateAtlasLayout(atlas);
+  const AtlasImage& image = atlas.images[0];
+  const size_t texels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  if (image.data.empty() || image.data[0].size() < 3 * texels)
+  {
+    throw InputError("LOD bounds: image 0 holds " +
+      std::to_string(image.data.empty() ? 0 : image.data[0].size()) + " position values for " +
+      std::to_string(texels) + " texels; want 3 per texel");
+  }
+  std::vector<float> points;
+  bounds = { kInf, -kInf, kInf, -kInf, kInf, -kInf };
+  forEachImageSample(atlas, 0,
+    [&](int32_t, int32_t, int32_t, int32_t, size_t texel)
+    {
+      for (size_t x = 0; x < 3; ++x)
+      {
+        const float v = image.data[0][3 * texel + x];
+        points.push_back(v);
+        bounds[2 * x] = std::min(bounds[2 * x], double(v));
+        bounds[2 * x + 1] = std::max(bounds[2 * x + 1], double(v));
+      }
+    });
+  return points;
+}
+
+/// Bounds of the samples under one affine row-major 4 x 4 matrix `t`, each coordinate of each
+/// sample evaluated as t[r][0] x + t[r][1] y + t[r][2] z + t[r][3] in double.
+std::array<double, 6> transformedBounds(
+  const std::vector<float>& points, const std::array<double, 6>& model, const double* t)
+{
+  std::array<double, 6> out{};
+  for (int r = 0; r < 3; ++r)
+  {
+    const double* row = t + 4 * r;
+    const int nonzero = (row[0] != 0.0) + (row[1] != 0.0) + (row[2] != 0.0);
+    if (nonzero <= 1)
+    {
+      // One axis (or none) feeds this row: rounding is monotone, so the extremes of the samples'
+      // coordinate give the extremes of the row, bit for bit as the loop below would.
+      const int k = row[0] != 0.0 ? 0 : row[1] != 0.0 ? 1 : 2;
+      const double a = row[k] * model[2 * static_cast<size_t>(k)] + row[3];
+      const double b = row[k] * model[2 * static_cast<size_t>(k) + 1] + row[3];
+      out[2 * static_cast<size_t>(r)] = std::min(a, b);
+      out[2 * static_cast<size_t>(r) + 1] = std::max(a, b);
+      continue;
+    }
+    double lo = kInf, hi = -kInf;
+    for (size_t p = 0; p < points.size(); p += 3)
+    {
+      const double v =
+        row[0] * points[p] + row[1] * points[p + 1] + row[2] * points[p + 2] + row[3];
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    out[2 * static_cast<size_t>(r)] = lo;
+    out[2 * static_cast<size_t>(r) + 1] = hi;
+  }
+  return out;
 }
 } // namespace
 
@@ -472,5 +538,76 @@ void buildDrawList(
   LevelCursor cursor = countLevels(charts, levels, instances, list);
   list.entries.resize(static_cast<size_t>(list.levelStart[static_cast<size_t>(charts.stride)]) * 4);
   placeEntries(charts, levels, instances, cursor, list);
+}
+
+LodTriangle locateTriangle(const LodDrawList& list, int64_t cell)
+{
+  LodTriangle found;
+  if (cell < 0 || list.levelStart.empty())
+  {
+    return found;
+  }
+  const int32_t* e = list.entries.data();
+  for (size_t d = 0; d + 1 < list.levelStart.size(); ++d)
+  {
+    // The entries of level d ascend in first id (instance, then chart); -1 only at their end.
+    int64_t lo = list.levelStart[d], hi = list.levelStart[d + 1];
+    while (lo < hi)
+    {
+      const int64_t mid = lo + (hi - lo) / 2;
+      const int32_t first = e[4 * mid + 3];
+      if (first >= 0 && first <= cell)
+      {
+        lo = mid + 1;
+      }
+      else
+      {
+        hi = mid;
+      }
+    }
+    if (lo == list.levelStart[d])
+    {
+      continue;
+    }
+    const int32_t* hit = e + 4 * (lo - 1);
+    const int64_t triangle = cell - hit[3];
+    if (triangle < (int64_t(1) << (2 * d)))
+    {
+      found.chart = hit[0];
+      found.instance = hit[1];
+      found.level = static_cast<int32_t>(d);
+      found.triangle = triangle;
+      return found;
+    }
+  }
+  return found;
+}
+
+std::array<double, 6> drawnBounds(const Atlas& atlas, const std::vector<double>& instances)
+{
+  std::array<double, 6> bounds{ 1, -1, 1, -1, 1, -1 };
+  const int64_t count = static_cast<int64_t>(instances.size() / 16);
+  if (atlas.charts.empty() || count == 0)
+  {
+    return bounds;
+  }
+  std::array<double, 6> model{};
+  const std::vector<float> points = finestSamples(atlas, model);
+  std::vector<std::array<double, 6>> each(static_cast<size_t>(count));
+  // Instances in parallel: a crowd turned off the axes loops over every sample once per instance.
+  parallel_for(count,
+    [&](int64_t i) {
+      each[static_cast<size_t>(i)] = transformedBounds(points, model, instances.data() + 16 * i);
+    });
+  bounds = { kInf, -kInf, kInf, -kInf, kInf, -kInf };
+  for (const std::array<double, 6>& b : each)
+  {
+    for (size_t x = 0; x < 3; ++x)
+    {
+      bounds[2 * x] = std::min(bounds[2 * x], b[2 * x]);
+      bounds[2 * x + 1] = std::max(bounds[2 * x + 1], b[2 * x + 1]);
+    }
+  }
+  return bounds;
 }
 } // namespace tc

@@ -106,9 +106,15 @@ void selectLevels(
   const LodCharts& charts, const LodView& view, const LodOptions& options, int32_t* levels);
 
 /// The draw list: one entry per drawn (instance, chart), grouped by level.
+///
+/// Cell ids (what a picking pass writes for a drawn triangle): the triangles of the frame are
+/// numbered instance by instance, chart by chart within an instance, and in grid order within a
+/// chart (tc::rebuildMesh's order before stitching drops any), so that an entry's triangles are
+/// the ids [first, first + 4^level). Ids go up to triangles - 1 and are kept below 2^31 (the
+/// shader's int): an entry whose ids would pass INT32_MAX gets first = -1 (not pickable).
 struct LodDrawList
 {
-  std::vector<int32_t> entries; ///< 4 ints per entry: chart, instance, packed levels, 0
+  std::vector<int32_t> entries; ///< 4 ints per entry: chart, instance, packed levels, first id
   /// stride + 1: entries of level d are [levelStart[d], levelStart[d+1])
   std::vector<int64_t> levelStart;
   std::vector<int64_t> chartsPerLevel; ///< stride
@@ -128,4 +134,33 @@ struct LodDrawList
 ///         neighbour id that is not a chart
 void buildDrawList(
   const LodCharts& charts, const int32_t* levels, int32_t instances, LodDrawList& list);
+
+/// A triangle of the draw list: its instance, chart, the chart's level and the triangle's index
+/// in the chart's level-`level` grid (0 .. 4^level - 1, grid order). All -1 when not found.
+struct LodTriangle
+{
+  int32_t instance = -1;
+  int32_t chart = -1;
+  int32_t level = -1;
+  int64_t triangle = -1;
+};
+
+/// The triangle of cell id `cell` (LodDrawList above), or all -1 when no entry holds it.
+/// O(levels x log(entries)): a binary search per level, whose entries ascend in first id.
+LodTriangle locateTriangle(const LodDrawList& list, int64_t cell);
+
+/// Axis-aligned bounds (xmin, xmax, ymin, ymax, zmin, zmax) of every sample the charts draw at
+/// their finest level, transformed by each of the `instances` row-major 4 x 4 matrices (model to
+/// actor coordinates; affine, the last row ignored). Coarser levels draw a subset of these
+/// samples (the atlas's dyadic invariant) and stitching moves vertices onto samples, so every
+/// level's surface lies inside, and the finest one touches every side: the bounds are exact,
+/// unlike the union of the oriented boxes (which LOD selection and culling use). Each bound is
+/// the extreme of the transformed samples evaluated in double, the same value a loop over the
+/// samples gives; an instance whose 3 x 3 part has one nonzero per row (a translation, scale or
+/// axis permutation) is bounded from the model bounds without that loop.
+/// Cost: O(S) for S samples, plus O(S) per instance that is turned off the axes.
+/// @param[in] instances  #instances x 16
+/// @return (1, -1, 1, -1, 1, -1) (empty) when there are no charts or no instances
+/// @throws InputError when the atlas's layout is invalid (validateAtlasLayout)
+std::array<double, 6> drawnBounds(const Atlas& atlas, const std::vector<double>& instances);
 } // namespace tc

@@ -1,0 +1,6 @@
+//VTK::Color::Dec
+// A geometry shader (surface with edges, wide lines) passes the colour and entry through.
+in vec3 tcColorVSOutput[];
+out vec3 tcColorGSOutput;
+flat in int tcEntryVSOutput[];
+flat out int tcEntryGSOutput;

@@ -1,0 +1,3 @@
+//VTK::Color::Impl
+    tcColorGSOutput = tcColorVSOutput[i];
+    tcEntryGSOutput = tcEntryVSOutput[i];

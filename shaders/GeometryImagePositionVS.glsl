@@ -1,2 +1,0 @@
-  vertexVCVSOutput = MCVCMatrix * tcPositionMC;
-  gl_Position = MCDCMatrix * tcPositionMC;
