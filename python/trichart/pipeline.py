@@ -144,8 +144,9 @@ def estimate_memory(points, triangles, geometry_options=None, base_options=None,
         int(points), int(triangles), int(options["sample_budget"]), int(options["max_level"]),
         int(options["target_faces"]), int(options["nystrom_threshold"]))
     if estimate < 0:
-        raise TriChartError(f"images: the largest level must be 0 .. 12, not "
-                            f"{options['max_level']}")
+        raise TriChartError(f"memory: no estimate for a budget of {options['sample_budget']} "
+                            f"samples up to level {options['max_level']}: the budget must not "
+                            f"be negative and the largest level must be 0 .. 12")
     return estimate
 
 

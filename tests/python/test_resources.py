@@ -66,6 +66,16 @@ def test_threads_outside_the_range_are_refused(testing_data, tmp_path):
     assert r.returncode == 2 and "--threads must be 1 .. 4096" in r.stderr, r.stderr
 
 
+def test_a_request_that_cannot_be_estimated_is_refused(testing_data, tmp_path):
+    for option in (["--budget", "-5"], ["--max-level", "13"]):
+        r = run("build", testing_data / "meshes" / "cube.off", "-o", tmp_path / "a.exr", "-q",
+                *option)
+        assert r.returncode == 2, r.stderr
+        assert "the budget must not be negative and the largest level must be 0 .. 12" in \
+            r.stderr, r.stderr
+        assert not (tmp_path / "a.exr").exists()
+
+
 def test_memory_sizes_take_units():
     from trichart.cli import memory_size
 
