@@ -22,7 +22,8 @@ measure() { # mesh, then build options
     -o "$work/atlas.exr" -q "$@" > "$work/out"
   local peak estimate start
   peak=$(awk '/Maximum resident set size/ {print int($NF / 1024)}' "$work/time")
-  read -r estimate start < <(sed -n 's/.*estimated \([0-9]*\) MB above the \([0-9]*\) MB.*/\1 \2/p' "$work/out")
+  read -r estimate start < <(sed -n \
+    's/.*estimated \([0-9]*\) MB above the \([0-9]*\) MB.*/\1 \2/p' "$work/out")
   awk -v m="$mesh $*" -v e="$estimate" -v s="$start" -v p="$peak" 'BEGIN {
     printf "%-52s estimate %6d MB  start %4d MB  peak %6d MB  estimate/(peak-start) %.2f\n",
       m, e, s, p, e / (p - s) }'
