@@ -1,6 +1,7 @@
 """The `trichart` command: run TriChart stages on mesh files from the shell."""
 import argparse
 import os
+import re
 import shutil
 import sys
 import time
@@ -33,6 +34,18 @@ class ProgressBar:
     def close(self):
         if self.tty and self.label is not None:
             self.stream.write("\n")
+
+
+_UNITS = {"": 1, "K": 2 ** 10, "M": 2 ** 20, "G": 2 ** 30, "T": 2 ** 40}
+
+
+def memory_size(text):
+    """Bytes of a --max-memory value: '8G', '512M', '1.5g', '64MiB', '1000000' (bytes)."""
+    match = re.fullmatch(r"\s*(\d+(?:\.\d*)?)\s*([kmgtKMGT]?)(?:i?[bB])?\s*", text)
+    if not match:
+        raise argparse.ArgumentTypeError(
+            f"'{text}' is no memory size: give bytes, or a number with K, M, G or T (8G, 512M)")
+    return int(float(match.group(1)) * _UNITS[match.group(2).upper()])
 
 
 def _needs_display(args):
@@ -123,17 +136,33 @@ def _print_build_summary(args, result, seconds):
         print(f"  wrote {name}: {path}")
 
 
-def cmd_build(args):
-    from .pipeline import build
+def _print_memory(result):
+    """The estimate of the build against the peak resident memory it reached."""
+    from .pipeline import resident_memory
 
+    # VmHWM, not getrusage's ru_maxrss: that one keeps the peak of the process this one was
+    # forked from across exec (a test runner's, a shell's).
+    peak = resident_memory("VmHWM")
+    memory = result["memory"]
+    print(f"  memory: peak {peak / 2 ** 20:.0f} MB resident, estimated "
+          f"{memory['estimate'] / 2 ** 20:.0f} MB above the {memory['start'] / 2 ** 20:.0f} MB "
+          f"held at the start")
+
+
+def cmd_build(args):
+    from .pipeline import build, set_max_threads
+
+    set_max_threads(args.threads)
     bar = None if args.quiet else ProgressBar()
     start = time.perf_counter()
     try:
-        result = build(args.mesh, args.output, progress=bar, **_build_options(args))
+        result = build(args.mesh, args.output, progress=bar, max_memory=args.max_memory,
+                       **_build_options(args))
     finally:
         if bar:
             bar.close()
     _print_build_summary(args, result, time.perf_counter() - start)
+    _print_memory(result)
     return 0
 
 
@@ -259,6 +288,13 @@ def _add_build_parser(sub, d):
     p.add_argument("--no-fit", action="store_true",
                    help="interpolate the surface at the finest samples instead of fitting "
                         "them to it by least squares")
+    p.add_argument("--threads", type=int, default=0,
+                   help="threads of every stage, 1 .. 4096 (default 0: one per core); the "
+                        "atlas is the same for every count")
+    p.add_argument("--max-memory", type=memory_size, metavar="SIZE",
+                   help="refuse, before the work starts, a build whose estimated peak memory "
+                        "exceeds SIZE: bytes, or with a unit K, M, G, T (powers of 1024), "
+                        "e.g. 8G, 512M; 0: no limit (default: the machine's available memory)")
     p.add_argument("--no-image", action="store_true", help="no pictures with --stages")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
 
@@ -306,6 +342,8 @@ def _check_args(parser, args, d):
         low, high = base.GetMaxErrorMinValue(), base.GetMaxErrorMaxValue()
         if not low <= args.max_error <= high:
             parser.error(f"--max-error must be {low:g} .. {high:g}, not {args.max_error}")
+        if not 0 <= args.threads <= 4096:
+            parser.error(f"--threads must be 1 .. 4096 (0: one per core), not {args.threads}")
     if args.command in ("build", "prepare") and (args.max_hole_edges < 0 or
                                                  0 < args.max_hole_edges < 3):
         parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "
@@ -313,6 +351,14 @@ def _check_args(parser, args, d):
 
 
 def main(argv=None):
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:  # SIGINT before or between the stages (run() defers it in one)
+        print("trichart: interrupted; nothing half-written was left", file=sys.stderr)
+        return 130
+
+
+def _main(argv):
     defaults = _Defaults()
     parser = _parser(defaults)
     args = parser.parse_args(argv)
@@ -335,6 +381,3 @@ def main(argv=None):
     except TriChartError as error:
         print(f"trichart: error: {error}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print("trichart: aborted", file=sys.stderr)
-        return 130

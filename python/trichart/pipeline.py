@@ -1,6 +1,8 @@
 """Chain the TriChart filters from Python, with errors as exceptions and progress callbacks."""
 import os
+import signal
 import tempfile
+import threading
 import time
 
 from vtkmodules.util.misc import calldata_type
@@ -16,6 +18,15 @@ class TriChartError(RuntimeError):
     """A TriChart stage refused its input; the message says what to fix."""
 
 
+class ResourceError(TriChartError):
+    """A request needs more memory than its limit; `estimate` and `limit` are in bytes."""
+
+    def __init__(self, message, estimate, limit):
+        super().__init__(message)
+        self.estimate = estimate
+        self.limit = limit
+
+
 class UntraceableError(TriChartError):
     """tcPathTracing could not trace the paths (the parameterization is not one-to-one
     somewhere, which slivers cause); `reason` says what could not be traced."""
@@ -25,13 +36,41 @@ class UntraceableError(TriChartError):
         self.reason = reason
 
 
+class _DeferredInterrupt:
+    """While a filter runs, SIGINT only records the request, which the next progress event turns
+    into an abort: a KeyboardInterrupt raised inside a VTK observer makes VTK's wrapping exit the
+    process on the spot (exit code 1, no unwinding, a writer's temporary file left behind).
+    Installed only over Python's own handler, in the main thread; `requested` says whether a
+    SIGINT came."""
+
+    def __init__(self):
+        self.requested = False
+        self.previous = None
+
+    def __enter__(self):
+        if (threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            self.previous = signal.signal(signal.SIGINT, self._record)
+        return self
+
+    def _record(self, _signum, _frame):
+        self.requested = True
+
+    def __exit__(self, *_exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+        return False
+
+
 def run(algorithm, label="", progress=None):
     """Update `algorithm`; raise TriChartError with its error message if it fails.
 
     progress(label, fraction) is called as the algorithm reports progress; returning False
-    from it (or pressing Ctrl-C) aborts the stage.
+    from it (or pressing Ctrl-C) aborts the stage, and KeyboardInterrupt is raised when it has
+    stopped (its outputs and files cleaned up by the filter).
     """
     errors = []
+    interrupt = _DeferredInterrupt()
 
     @calldata_type(VTK_STRING)
     def on_error(_obj, _event, text):
@@ -39,7 +78,8 @@ def run(algorithm, label="", progress=None):
 
     def on_progress(obj, _event):
         try:
-            if progress is not None and progress(label, obj.GetProgress()) is False:
+            if interrupt.requested or (progress is not None and
+                                       progress(label, obj.GetProgress()) is False):
                 obj.AbortExecuteOn()
         except KeyboardInterrupt:
             obj.AbortExecuteOn()
@@ -54,12 +94,13 @@ def run(algorithm, label="", progress=None):
     executive = algorithm.GetExecutive()
     executive_tag = executive.AddObserver(vtkCommand.ErrorEvent, on_executive_error)
     try:
-        algorithm.Update()
+        with interrupt:
+            algorithm.Update()
     finally:
         algorithm.RemoveObserver(error_tag)
         algorithm.RemoveObserver(progress_tag)
         executive.RemoveObserver(executive_tag)
-    if algorithm.GetAbortExecute():
+    if algorithm.GetAbortExecute() or interrupt.requested:
         algorithm.AbortExecuteOff()
         algorithm.Modified()
         raise KeyboardInterrupt(f"{label or algorithm.GetClassName()} aborted")
@@ -68,6 +109,77 @@ def run(algorithm, label="", progress=None):
         message = errors[0].split("\n", 1)[-1].strip()
         raise TriChartError(f"{label or algorithm.GetClassName()}: {message}")
     return algorithm
+
+
+def set_max_threads(n):
+    """Caps the threads of every TriChart stage of this process at n (0: one per core)."""
+    if not TriChartIO.tcResources.SetMaxThreads(int(n)):
+        raise TriChartError(f"threads must be 0 .. 4096 (0: one per core), not {n}")
+
+
+def format_bytes(n):
+    """A byte count for a message: '512.0 MB', '80.1 GB' (powers of 1024, as --max-memory)."""
+    for unit, scale in (("TB", 2 ** 40), ("GB", 2 ** 30), ("MB", 2 ** 20), ("KB", 2 ** 10)):
+        if abs(n) >= scale:
+            return f"{n / scale:.1f} {unit}"
+    return f"{n} bytes"
+
+
+def _stage_defaults():
+    """The options of the estimate that the filters default (one home for each)."""
+    return {"max_level": TriChartGeometryImages.tcGeometryImages().GetMaxLevel(),
+            "sample_budget": TriChartGeometryImages.tcGeometryImages().GetSampleBudget(),
+            "target_faces": TriChartBaseComplex.tcBaseComplex().GetTargetFaces(),
+            "nystrom_threshold": TriChartFeatures.tcSpectralClustering().GetNystromThreshold()}
+
+
+def estimate_memory(points, triangles, geometry_options=None, base_options=None,
+                    cluster_options=None):
+    """Estimated peak memory in bytes of build() on a mesh of these counts with these options
+    (the filters' defaults for those not given), above what the process holds before it."""
+    options = _stage_defaults()
+    for given in (geometry_options, base_options, cluster_options):
+        options.update({k: v for k, v in (given or {}).items() if k in options})
+    estimate = TriChartIO.tcResources.EstimateBuildMemory(
+        int(points), int(triangles), int(options["sample_budget"]), int(options["max_level"]),
+        int(options["target_faces"]), int(options["nystrom_threshold"]))
+    if estimate < 0:
+        raise TriChartError(f"memory: no estimate for a budget of {options['sample_budget']} "
+                            f"samples up to level {options['max_level']}: the budget must not "
+                            f"be negative and the largest level must be 0 .. 12")
+    return estimate
+
+
+def _check_memory(points, triangles, limit, what, options):
+    """Raise ResourceError when the build of a mesh of these counts needs more than `limit`
+    bytes (None: the available memory; 0: no limit); returns the estimate."""
+    estimate = estimate_memory(points, triangles, *options)
+    source = "--max-memory / max_memory"
+    if limit is None:
+        limit, source = TriChartIO.tcResources.GetAvailableMemory(), "the available memory"
+    if limit and estimate > limit:
+        images = dict(_stage_defaults(), **(options[0] or {}))
+        budget = images["sample_budget"] or points
+        raise ResourceError(
+            f"memory: {what} {points} points and {triangles} triangles; with a budget of "
+            f"{budget} samples up to level {images['max_level']} its build needs about "
+            f"{format_bytes(estimate)}, more than the limit of {format_bytes(limit)} "
+            f"({source}): lower the budget or the largest level (--budget, --max-level), "
+            f"simplify the mesh, or raise the limit (--max-memory)", estimate, limit)
+    return estimate
+
+
+def resident_memory(field="VmRSS"):
+    """Bytes this process holds now (VmRSS) or held at most (VmHWM), 0 where /proc does not
+    say."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return 0
 
 
 def _output(algorithm, port=0):
@@ -359,9 +471,27 @@ def _write_stages(folder, outputs, image):
     return files
 
 
+def _read_within(path, progress, timed, max_memory, options):
+    """read_mesh(path), refused (ResourceError) before the read when the counts the file
+    declares already need more than max_memory, and after it for those read; returns (the
+    mesh, the estimate of its build)."""
+    counts = [-1, -1]
+    TriChartIO.tcResources.GetMeshFileCounts(str(path), counts)
+    if counts[1] >= 0:
+        points = counts[0] if counts[0] >= 0 else counts[1] // 2
+        _check_memory(points, counts[1], max_memory, f"'{path}' declares",
+                      options)
+    mesh = timed("read", read_mesh, path, progress)
+    polys = mesh.GetPolys()
+    triangles = polys.GetNumberOfConnectivityIds() - 2 * polys.GetNumberOfCells()
+    estimate = _check_memory(mesh.GetNumberOfPoints(), triangles, max_memory,
+                             f"'{path}' has", options)
+    return mesh, estimate
+
+
 def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
           cluster_options=None, feature_options=None, base_options=None,
-          geometry_options=None, prepare_options=None, retry_slivers=True):
+          geometry_options=None, prepare_options=None, retry_slivers=True, max_memory=None):
     """The static pipeline: read, prepare, curvature, spectral clusters, feature refinement,
     base complex with MAPS, path tracing, geometry images; writes the atlas to `atlas_path`.
 
@@ -378,9 +508,16 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     not remove slivers, it is run again with remove_slivers=True and the stages after it too:
     slivers are what makes the parameterization too thin to trace on scans and CAD meshes.
     The result's "retried" then says so (None otherwise).
+
+    Before the work starts (from the counts the file declares, then again from those read) the
+    peak memory is estimated (estimate_memory); ResourceError refuses a build whose estimate
+    exceeds max_memory bytes (None: the available memory; 0: no limit). The result's "memory"
+    holds the estimate and the bytes the process held at the start.
     """
     timed = _Stopwatch()
-    mesh = timed("read", read_mesh, path, progress)
+    start = resident_memory()
+    mesh, estimate = _read_within(path, progress, timed, max_memory,
+                        (geometry_options, base_options, cluster_options))
     stage_options = {"curvature": curvature_options or {}, "cluster": cluster_options or {},
                      "feature": feature_options or {}, "base": base_options or {}}
     outputs, report, retried = _front_retrying_slivers(mesh, prepare_options, stage_options,
@@ -394,4 +531,5 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
         outputs["rebuilt"] = rebuild(atlas, progress=progress)
         files.update(_write_stages(stages, outputs, image))
     return dict(outputs, atlas=atlas, files=files, report=report, mesh=outputs["prepared"],
-                surface=outputs["curvature"], seconds=timed.seconds, retried=retried)
+                surface=outputs["curvature"], seconds=timed.seconds, retried=retried,
+                memory={"estimate": estimate, "start": start})
