@@ -11,26 +11,25 @@
 //   tc_bench_geometry_images [mesh ...]   default: bunny_glmark2 (70K), armadillo,
 //                                         fandisk_large, refined_elephant
 #include "bench_common.h"
+#include "qem_peer.h"
 
 #include "tcMeshConversion.h"
 
-#include "tc/gim/atlas.h"
-#include "tc/io/atlas_io.h"
-#include "tc/gim/base_complex.h"
+#include "tc/common/mesh.h"
 #include "tc/features/crest_lines.h"
 #include "tc/features/curvature.h"
 #include "tc/features/feature_refinement.h"
+#include "tc/features/spectral_clustering.h"
+#include "tc/gim/atlas.h"
+#include "tc/gim/base_complex.h"
 #include "tc/gim/geometry_image_mesh.h"
 #include "tc/gim/geometry_images.h"
-#include "tc/common/mesh.h"
 #include "tc/gim/path_tracing.h"
-#include "tc/features/spectral_clustering.h"
+#include "tc/io/atlas_io.h"
 #include "tc/metrics/surface_distance.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-
-#include <meshoptimizer.h>
 
 #include <unistd.h>
 
@@ -124,33 +123,6 @@ tc::Atlas atlasOf(const tc::TriMesh& mesh, const tc::BaseComplexResult& base,
     });
   atlas.source = source;
   return atlas;
-}
-
-/// meshoptimizer's quadric simplification of `mesh` to at most `targetTriangles` triangles,
-/// returned as a mesh of the vertices it still uses.
-tc::TriMesh simplifyQem(const tc::TriMesh& mesh, int64_t targetTriangles)
-{
-  std::vector<float> positions(mesh.points.begin(), mesh.points.end());
-  std::vector<unsigned int> indices(mesh.triangles.begin(), mesh.triangles.end());
-  std::vector<unsigned int> kept(indices.size());
-  // target_error 1.0 (relative to the mesh extent): only the triangle count stops it.
-  const size_t count = meshopt_simplify(kept.data(), indices.data(), indices.size(),
-    positions.data(), static_cast<size_t>(mesh.numPoints()), 3 * sizeof(float),
-    3 * static_cast<size_t>(targetTriangles), 1.0f);
-  kept.resize(count);
-  std::vector<int32_t> newId(static_cast<size_t>(mesh.numPoints()), -1);
-  tc::TriMesh out;
-  for (const unsigned int v : kept)
-  {
-    if (newId[v] < 0)
-    {
-      newId[v] = static_cast<int32_t>(out.numPoints());
-      out.points.insert(out.points.end(), &mesh.points[3 * static_cast<size_t>(v)],
-        &mesh.points[3 * static_cast<size_t>(v)] + 3);
-    }
-    out.triangles.push_back(newId[v]);
-  }
-  return out;
 }
 
 struct LevelError
@@ -376,7 +348,7 @@ void benchmark(const std::string& file)
     bool withinRatio = true;
     for (size_t d = 0; d < ours.size(); ++d)
     {
-      const LevelError qem = errorOf(simplifyQem(mesh, ours[d].triangles), mesh);
+      const LevelError qem = errorOf(tcbench::SimplifyQem(mesh, ours[d].triangles), mesh);
       const double hRatio = ours[d].hausdorff / qem.hausdorff;
       const double rmsRatio = ours[d].rms / qem.rms;
       const bool hOk = hRatio <= kMaxErrorRatio, rmsOk = rmsRatio <= kMaxErrorRatio;
@@ -403,7 +375,7 @@ void benchmark(const std::string& file)
     {
       const LevelError adaptive =
         errorOf(tc::rebuildMesh(atlas, adaptiveLevels(atlas, ours[d].triangles)).mesh, mesh);
-      const LevelError qem = errorOf(simplifyQem(mesh, adaptive.triangles), mesh);
+      const LevelError qem = errorOf(tcbench::SimplifyQem(mesh, adaptive.triangles), mesh);
       std::cout << std::setw(6) << d << std::setw(9) << adaptive.vertices << std::setw(9)
                 << adaptive.triangles << std::setw(11) << percent(adaptive.hausdorff)
                 << std::setw(11) << percent(adaptive.rms) << std::setw(11) << percent(qem.hausdorff)

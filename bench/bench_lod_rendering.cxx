@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A crowd rendered two ways along one camera path (Feng et al. 2010, section 6 and Table III):
+// A crowd rendered three ways along one camera path (Feng et al. 2010, section 6 and Table III):
 // tcLODMapper drawing the atlas of the mesh with levels chosen for a screen-space error of at
-// most one pixel, and a plain vtkPolyDataMapper drawing the full mesh once per instance. Prints
-// frames per second, triangles per frame and per second for both, and their ratio, with the
-// goals of issue 6; then the LOD selection time for a 100K-chart scene.
+// most one pixel; a plain vtkPolyDataMapper drawing the full mesh once per instance; and what a
+// game engine does, a discrete LOD chain per object (discrete_lod.h) within the same one pixel.
+// Prints frames per second, triangles per frame and per second for each, their ratios, with the
+// goals of issues 6 and 18; then the LOD selection time for a 100K-chart scene.
 //
 //   xvfb-run -a tc_bench_lod_rendering [mesh] [instances] [frames]
 //     default: bunny_glmark2 (70K; "" for the default), 400 instances (a 20 x 20 grid), 60 frames
 #include "bench_common.h"
+#include "discrete_lod.h"
 
 #include "tcBaseComplex.h"
 #include "tcCurvature.h"
@@ -40,9 +42,10 @@
 
 namespace
 {
-constexpr double kSpeedupGoal = 10.0;  // LOD crowd vs full meshes, frames per second
+constexpr double kSpeedupGoal = 10.0;   // LOD crowd vs full meshes, frames per second
 constexpr double kSelectionGoal = 1e-3; // seconds per frame for 100K charts
 constexpr int kWidth = 1280, kHeight = 720;
+constexpr int64_t kChainMinTriangles = 64; // a chain's coarsest level, about gltfpack's floor
 
 struct Run
 {
@@ -62,17 +65,27 @@ void PlaceCamera(vtkCamera* camera, int frame, int frames, double extent, double
   camera->SetClippingRange(0.05 * size, 4.0 * extent);
 }
 
+/// Renders the path; `beforeRender` (may be empty) runs once the camera is placed, before each
+/// render, and `trianglesOfFrame` after it.
 Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double extent, double size,
-  const std::function<double()>& trianglesOfFrame)
+  const std::function<double()>& trianglesOfFrame, const std::function<void()>& beforeRender = {})
 {
   Run run;
   PlaceCamera(renderer->GetActiveCamera(), 0, frames, extent, size);
+  if (beforeRender)
+  {
+    beforeRender();
+  }
   window->Render(); // uploads, shader compilation: not timed
   static_cast<vtkOpenGLRenderWindow*>(window)->WaitForCompletion();
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < frames; ++f)
   {
     PlaceCamera(renderer->GetActiveCamera(), f, frames, extent, size);
+    if (beforeRender)
+    {
+      beforeRender();
+    }
     window->Render();
     static_cast<vtkOpenGLRenderWindow*>(window)->WaitForCompletion();
     run.triangles += trianglesOfFrame();
@@ -81,13 +94,57 @@ Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double exten
   run.triangles /= frames;
   return run;
 }
+/// The discrete LOD chain on the crowd's actors: each frame, every actor in view takes the
+/// coarsest chain level within `pixels`, the others are hidden.
+Run FlyChain(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double extent, double size,
+  const tcbench::DiscreteLod& chain, const std::vector<vtkSmartPointer<vtkActor>>& actors,
+  const std::vector<tcbench::Sphere>& spheres, double pixels)
+{
+  double triangles = 0.0;
+  const auto choose = [&]()
+  {
+    triangles = 0.0;
+    vtkCamera* camera = renderer->GetActiveCamera();
+    for (size_t i = 0; i < actors.size(); ++i)
+    {
+      const bool seen = tcbench::InFrustum(camera, double(kWidth) / kHeight, spheres[i]);
+      actors[i]->SetVisibility(seen);
+      if (seen)
+      {
+        const size_t level = tcbench::ChooseLevel(chain, camera, kHeight, spheres[i], pixels);
+        actors[i]->SetMapper(chain.mappers[level]);
+        triangles += chain.triangles[level];
+      }
+    }
+  };
+  return Fly(
+    window, renderer, frames, extent, size, [&]() { return triangles; }, choose);
+}
+
+/// The bounding sphere of `mesh` (box centre, half diagonal) placed by each instance matrix.
+std::vector<tcbench::Sphere> InstanceSpheres(vtkPolyData* mesh, vtkDoubleArray* matrices)
+{
+  double b[6];
+  mesh->GetBounds(b);
+  const double c[4] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]), 1.0 };
+  std::vector<tcbench::Sphere> spheres(static_cast<size_t>(matrices->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < matrices->GetNumberOfTuples(); ++i)
+  {
+    double placed[4];
+    vtkMatrix4x4::MultiplyPoint(matrices->GetTuple(i), c, placed);
+    std::copy(placed, placed + 3, spheres[static_cast<size_t>(i)].center);
+    spheres[static_cast<size_t>(i)].radius = 0.5 * mesh->GetLength();
+  }
+  return spheres;
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
   std::setvbuf(stdout, nullptr, _IOLBF, 0); // figures appear as they come, also into a file
-  const std::string file =
-    argc > 1 && argv[1][0] != 0 ? argv[1] : std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj";
+  const std::string file = argc > 1 && argv[1][0] != 0
+    ? argv[1]
+    : std::string(TC_SHARED_DATA_DIR) + "/static_medium/bunny_glmark2.obj";
   const int instances = argc > 2 ? std::max(1, std::atoi(argv[2])) : 400;
   const int frames = argc > 3 ? std::max(2, std::atoi(argv[3])) : 60;
   if (tcbench::Present({ file }).empty())
@@ -121,7 +178,8 @@ int main(int argc, char* argv[])
 
   double bounds[6];
   mesh->GetBounds(bounds);
-  const double size = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double size =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(instances))));
   const double spacing = 1.6 * size;
   const double extent = spacing * side;
@@ -177,8 +235,26 @@ int main(int argc, char* argv[])
     actors.push_back(actor);
   }
   const double meshTriangles = static_cast<double>(mesh->GetNumberOfPolys());
-  const Run plain = Fly(window, renderer, frames, extent, size,
-    [&]() { return meshTriangles * instances; });
+  const Run plain =
+    Fly(window, renderer, frames, extent, size, [&]() { return meshTriangles * instances; });
+
+  // The game engine's way: the same actors, each at its chain level.
+  tc::TriMesh triMesh;
+  std::string error;
+  if (!tcvtk::ToTriMesh(mesh, triMesh, error))
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  const tcbench::DiscreteLod chain = tcbench::BuildChain(triMesh, kChainMinTriangles);
+  std::printf("discrete LOD chain (meshopt_simplify): triangles / Hausdorff over the diagonal:");
+  for (size_t l = 0; l < chain.error.size(); ++l)
+  {
+    std::printf(" %.0f / %.4f%%", chain.triangles[l], 100.0 * chain.error[l] / mesh->GetLength());
+  }
+  std::printf("\n");
+  const Run discrete = FlyChain(window, renderer, frames, extent, size, chain, actors,
+    InstanceSpheres(mesh, matrices), lod->GetErrorTarget());
 
   auto report = [&](const char* name, const Run& run)
   {
@@ -189,12 +265,17 @@ int main(int argc, char* argv[])
   std::printf("crowd: %d instances, %d frames at %d x %d\n", instances, frames, kWidth, kHeight);
   report("tcLODMapper, error <= 1 pixel", withLod);
   report("vtkPolyDataMapper, full mesh", plain);
+  report("discrete LOD chain, error <= 1 pixel", discrete);
   const double speedup = plain.seconds / withLod.seconds;
   std::printf("  speed-up %.1fx (goal >= %.0fx: %s); per frame for %lld chart instances: LOD "
               "selection %.3f ms, draw list (sort by level, upload) %.3f ms\n",
     speedup, kSpeedupGoal, speedup >= kSpeedupGoal ? "met" : "missed",
     static_cast<long long>(charts ? charts->GetNumberOfRows() * instances : 0),
     1e3 * selection / frames, 1e3 * drawList / frames);
+  const double perFrame = withLod.triangles / discrete.triangles;
+  std::printf("  per-chart LOD draws %.2fx the triangles of the discrete chain at the same error "
+              "(goal <= 1: %s), at %.2fx its frames per second\n",
+    perFrame, perFrame <= 1.0 ? "met" : "missed", discrete.seconds / withLod.seconds);
 
   // LOD selection for 100K charts: the crowd's charts, enough instances to pass 100K.
   const vtkIdType perInstance = charts ? charts->GetNumberOfRows() : 1;
