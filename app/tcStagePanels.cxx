@@ -157,13 +157,16 @@ tcParameterPanel* tcStagePanels::Reconstruction(tcGeometryImageMesh* f, QWidget*
 tcParameterPanel* tcStagePanels::LOD(
   tcLODView* view, std::function<void()> resetCamera, QWidget* parent)
 {
-  // The viewer opens on the error-target rule and colours by level: the stage is there to show
-  // which level each chart takes, and the atlases the pipeline writes carry measured errors.
+  // The viewer opens on the mapper's defaults (the error-target rule) and colours by level: the
+  // stage is there to show which level each chart takes.
   auto* panel = new tcParameterPanel(tcParameterPanel::Live, parent);
-  panel->AddDouble("LOD bias", -4.0, 4.0, 1, 0.5, 0.0, [view](double b) { view->SetLODBias(b); })
+  const tc::LodOptions defaults; // tcLODMapper's defaults
+  panel
+    ->AddDouble(
+      "LOD bias", -4.0, 4.0, 1, 0.5, defaults.bias, [view](double b) { view->SetLODBias(b); })
     ->setToolTip("Levels added to every chosen level (positive: finer)");
-  QDoubleSpinBox* target = panel->AddDouble(
-    "Error target", 0.0, 64.0, 1, 0.5, 1.0, [view](double px) { view->SetErrorTarget(px); });
+  QDoubleSpinBox* target = panel->AddDouble("Error target", 0.0, 64.0, 1, 0.5, defaults.errorPixels,
+    [view](double px) { view->SetErrorTarget(px); });
   target->setSuffix(" px");
   target->setSpecialValueText("0 (area, eq. 7)");
   target->setToolTip("Each chart takes the coarsest level whose measured error projects to at "

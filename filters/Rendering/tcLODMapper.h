@@ -92,8 +92,9 @@ public:
 
   ///@{
   /// Screen-space error target in pixels: each chart takes the coarsest level whose measured
-  /// error (the atlas's LevelError) projects to at most this many pixels. 0 (default) chooses by
-  /// projected area instead (eq. 7); charts without measured errors always do.
+  /// error (the atlas's LevelError) projects to at most this many pixels; default 1. 0 chooses by
+  /// projected area instead (the paper's eq. 7, with LODBias); charts without measured errors
+  /// always do.
   vtkSetClampMacro(ErrorTarget, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ErrorTarget, double);
   ///@}

@@ -48,3 +48,16 @@ def test_xml_default_is_the_cpp_default(class_name, command, default):
     values = list(value) if isinstance(value, (tuple, list)) else [value]
     assert [float(v) for v in values] == [float(v) for v in default.split()], (
         f"{class_name}: {command} defaults to {value} in C++ but {default} in the XML")
+
+
+def test_lod_representation_error_target_is_the_mappers():
+    """The ParaView representation starts on tcLODMapper's error target (1 pixel), as the
+    mapper does in C++ and Python and the viewer's panel does."""
+    path = FILTERS / "ParaView" / "tcLODRepresentation.xml"
+    props = [p for p in ElementTree.parse(path).getroot().iter()
+             if p.get("command") == "SetErrorTarget"]
+    assert props, "tcLODRepresentation.xml has no ErrorTarget property"
+    mapper = trichart.tcLODMapper().GetErrorTarget()
+    assert mapper == 1.0
+    for prop in props:
+        assert float(prop.get("default_values")) == mapper

@@ -323,6 +323,7 @@ int TestLODMapper(int argc, char* argv[])
   mapper->SetInstanceMatrices(Translations({ { -0.6 * size, -0.2 * size, 0 },
     { 0.6 * size, 0.3 * size, -3 * size }, { 4 * size, 2 * size, -10 * size } }));
   mapper->SetColorMode(tcLODMapper::ColorByLevel);
+  mapper->SetErrorTarget(0.0); // the paper's area rule (eq. 7), not the default error target
   mapper->SetLODBias(4.0);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetFocalPoint(center[0] + 0.5 * size, center[1] + 0.25 * size, center[2] - 5 * size);
