@@ -165,6 +165,14 @@ def session(port, folder):
         check(not client.GetInputIsAtlas(), "the client's representation has no input of its own")
         if mode == "client":
             check(drawn == charts, "the client draws every chart the server delivered")
+            # The client converts the delivered atlas once: a second frame draws the same one.
+            converted = client.GetMapper().GetInputDataObject(0, 0)
+            Render(view)
+            again = client.GetMapper().GetInputDataObject(0, 0)
+            check(converted is not None and again is not None
+                  and converted.GetAddressAsString("vtkObject") == again.GetAddressAsString(
+                      "vtkObject") and converted.GetMTime() == again.GetMTime(),
+                  "the client's mapper keeps the atlas it converted from one frame to the next")
         else:
             check(drawn == 0, "with remote rendering the client draws nothing itself")
     check(abs(results["client"] - results["server"]) <= 0.02 * results["client"],
