@@ -146,8 +146,7 @@ int tcLODRepresentation::RequestData(
   vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() > 0
     ? vtkDataObject::GetData(inputVector[0], 0)
     : nullptr;
-  // An update of the same, unmodified input (ParaView marks representations modified, e.g. when
-  // another view or the time asks for one) keeps the conversion rather than converting again.
+  // An update of the same, unmodified input keeps the conversion rather than converting again.
   const bool unchanged =
     input && this->Atlas && input == this->Input && TreeMTime(input) == this->InputTime;
   if (!unchanged)
