@@ -2,17 +2,28 @@
 #include "tcLODRepresentation.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataObject.h>
+#include <vtkDataObjectTree.h>
+#include <vtkDataObjectTreeIterator.h>
+#include <vtkDataObjectTreeRange.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetAttributes.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMath.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 #include <vtkPVRenderView.h>
 #include <vtkPVView.h>
+#include <vtkPointData.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
 
 namespace
@@ -33,6 +44,80 @@ void CollectError(vtkObject*, unsigned long, void* clientData, void* callData)
   text.erase(text.find_last_not_of(" \n") + 1);
   *messages += (messages->empty() ? "" : " ") + text;
 }
+
+/// A shallow copy of `input` that VTK's legacy format writes without reordering its arrays.
+/// ParaView moves a piece between processes in that format (vtkMPIMoveData through
+/// vtkGenericDataObjectWriter), which writes each data set's active attributes before its other
+/// arrays, while the atlas's images are read by array order (Position, Normal, then the
+/// resampled ones): the copy's data sets own their attribute lists, with no attribute active.
+vtkSmartPointer<vtkDataObject> DeliverableCopy(vtkDataObject* input)
+{
+  vtkSmartPointer<vtkDataObject> copy = vtk::TakeSmartPointer(input->NewInstance());
+  copy->ShallowCopy(input);
+  auto* tree = vtkDataObjectTree::SafeDownCast(copy);
+  if (!tree)
+  {
+    return copy;
+  }
+  // ShallowCopy clones the inner trees but shares the leaves, which belong to the pipeline.
+  vtkSmartPointer<vtkDataObjectTreeIterator> leaf = vtk::TakeSmartPointer(tree->NewTreeIterator());
+  leaf->VisitOnlyLeavesOn();
+  leaf->TraverseSubTreeOn();
+  leaf->SkipEmptyNodesOn();
+  for (leaf->InitTraversal(); !leaf->IsDoneWithTraversal(); leaf->GoToNextItem())
+  {
+    auto* data = vtkDataSet::SafeDownCast(leaf->GetCurrentDataObject());
+    if (!data)
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataSet> own = vtk::TakeSmartPointer(data->NewInstance());
+    own->ShallowCopy(data);
+    const std::array<vtkDataSetAttributes*, 2> lists{ own->GetPointData(), own->GetCellData() };
+    for (vtkDataSetAttributes* attributes : lists)
+    {
+      for (int type = 0; type < vtkDataSetAttributes::NUM_ATTRIBUTES; ++type)
+      {
+        attributes->SetActiveAttribute(-1, type);
+      }
+    }
+    tree->SetDataSet(leaf, own);
+  }
+  return copy;
+}
+
+/// True when the trees `a` and `b` hold the very same leaves (a shallow copy of one another).
+bool SharesLeaves(vtkDataObject* a, vtkDataObject* b)
+{
+  auto* treeA = vtkDataObjectTree::SafeDownCast(a);
+  auto* treeB = vtkDataObjectTree::SafeDownCast(b);
+  if (!treeA || !treeB)
+  {
+    return a == b;
+  }
+  const auto options =
+    vtk::DataObjectTreeOptions::VisitOnlyLeaves | vtk::DataObjectTreeOptions::TraverseSubTree;
+  const auto leavesA = vtk::Range(treeA, options);
+  const auto leavesB = vtk::Range(treeB, options);
+  return std::equal(leavesA.begin(), leavesA.end(), leavesB.begin(), leavesB.end(),
+    [](vtkDataObject* x, vtkDataObject* y) { return x == y; });
+}
+
+/// The latest modification of `data` or of any of its leaves (their arrays included).
+vtkMTimeType TreeMTime(vtkDataObject* data)
+{
+  vtkMTimeType time = data->GetMTime();
+  if (auto* tree = vtkDataObjectTree::SafeDownCast(data))
+  {
+    for (vtkDataObject* leaf :
+      vtk::Range(tree,
+        vtk::DataObjectTreeOptions::VisitOnlyLeaves | vtk::DataObjectTreeOptions::TraverseSubTree))
+    {
+      time = std::max(time, leaf ? leaf->GetMTime() : 0);
+    }
+  }
+  return time;
+}
 } // namespace
 
 vtkStandardNewMacro(tcLODRepresentation);
@@ -48,7 +133,8 @@ tcLODRepresentation::~tcLODRepresentation() = default;
 int tcLODRepresentation::FillInputPortInformation(int, vtkInformation* info)
 {
   // Any data object: what is not an atlas is explained in RequestData rather than refused by
-  // the pipeline with a bare type name.
+  // the pipeline with a bare type name. Optional: the client of a client-server session has no
+  // input, only what the server delivers.
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
@@ -57,43 +143,72 @@ int tcLODRepresentation::FillInputPortInformation(int, vtkInformation* info)
 int tcLODRepresentation::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // 1. Input: a shallow copy, so that the pipeline's data object is delivered unchanged.
-  this->Atlas = nullptr;
-  vtkMath::UninitializeBounds(this->Bounds);
   vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() > 0
     ? vtkDataObject::GetData(inputVector[0], 0)
     : nullptr;
-  if (input)
+  // An update of the same, unmodified input keeps the conversion rather than converting again.
+  const bool unchanged =
+    input && this->Atlas && input == this->Input && TreeMTime(input) == this->InputTime;
+  if (!unchanged)
   {
-    vtkSmartPointer<vtkDataObject> atlas = vtk::TakeSmartPointer(input->NewInstance());
-    atlas->ShallowCopy(input);
-
-    // 2. Validate and measure: the mapper's conversion says what is missing; its bounds are the
-    // charts' oriented boxes.
-    std::string messages;
-    vtkNew<vtkCallbackCommand> collect;
-    collect->SetCallback(CollectError);
-    collect->SetClientData(&messages);
-    const unsigned long observer = this->BoundsMapper->AddObserver(vtkCommand::ErrorEvent, collect);
-    this->BoundsMapper->SetInputData(atlas);
-    this->BoundsMapper->GetBounds(this->Bounds);
-    this->BoundsMapper->RemoveObserver(observer);
-    // Without input the mapper frees its conversion: only the rendering mapper keeps one.
-    this->BoundsMapper->SetInputData(nullptr);
-    if (messages.empty())
+    this->Atlas = nullptr;
+    vtkMath::UninitializeBounds(this->Bounds);
+    this->Input = input;
+    this->InputTime = input ? TreeMTime(input) : 0;
+    if (input)
     {
-      this->Atlas = atlas;
-    }
-    else
-    {
-      vtkErrorMacro("The TriChart LOD representation draws atlases only (the output of TriChart "
-                    "Atlas Reader or TriChart Geometry Images), and this input is not one: "
-        << messages
-        << " Nothing is drawn; apply TriChart Geometry Image Mesh to show it as a mesh, or choose "
-           "another representation.");
+      this->Atlas = this->MeasureAtlas(DeliverableCopy(input));
     }
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+vtkSmartPointer<vtkDataObject> tcLODRepresentation::MeasureAtlas(vtkDataObject* atlas)
+{
+  // The drawing mapper validates and converts the atlas, and its bounds are what the view
+  // frames: the one converted copy of this process, which it goes on drawing when the view
+  // delivers this atlas back to it (UseDeliveredAtlas).
+  std::string messages;
+  vtkNew<vtkCallbackCommand> collect;
+  collect->SetCallback(CollectError);
+  collect->SetClientData(&messages);
+  const unsigned long observer = this->Mapper->AddObserver(vtkCommand::ErrorEvent, collect);
+  this->Mapper->SetInputData(atlas);
+  this->Mapper->GetBounds(this->Bounds);
+  this->Mapper->RemoveObserver(observer);
+  if (messages.empty())
+  {
+    return atlas;
+  }
+  this->Mapper->SetInputData(nullptr);
+  vtkMath::UninitializeBounds(this->Bounds);
+  vtkErrorMacro("The TriChart LOD representation draws atlases only (the output of TriChart "
+                "Atlas Reader or TriChart Geometry Images), and this input is not one: "
+    << messages
+    << " Nothing is drawn; apply TriChart Geometry Image Mesh to show it as a mesh, or choose "
+       "another representation.");
+  return nullptr;
+}
+
+void tcLODRepresentation::UseDeliveredAtlas(vtkDataObject* delivered)
+{
+  // ParaView delivers a shallow copy of the piece: where it is this process's own atlas
+  // (builtin session, or rendering on the server), the mapper keeps the atlas it converted in
+  // RequestData; elsewhere (the client) it converts the delivered one. An empty piece: nothing.
+  vtkDataObject* draw = nullptr;
+  if (this->Atlas && delivered && SharesLeaves(delivered, this->Atlas))
+  {
+    draw = this->Atlas;
+  }
+  else if (auto* blocks = vtkMultiBlockDataSet::SafeDownCast(delivered))
+  {
+    draw = blocks->GetNumberOfBlocks() > 0 ? delivered : nullptr;
+  }
+  if (this->Mapper->GetInputDataObject(0, 0) != draw)
+  {
+    this->Mapper->SetInputData(draw);
+  }
+  this->Actor->SetVisibility(this->GetVisibility() && draw != nullptr);
 }
 
 int tcLODRepresentation::ProcessViewRequest(
@@ -106,7 +221,10 @@ int tcLODRepresentation::ProcessViewRequest(
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
-    vtkPVView::SetPiece(inInfo, this, this->Atlas);
+    // Every process gives a piece, and of one type: the delivery manager moves data only
+    // between processes that all have one (the client has no input), so an empty multiblock
+    // stands for "nothing to draw".
+    vtkPVView::SetPiece(inInfo, this, this->Atlas ? this->Atlas.Get() : this->NoAtlas.Get());
     if (this->Atlas && vtkMath::AreBoundsInitialized(this->Bounds))
     {
       vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds, this->Actor->GetMatrix());
@@ -114,10 +232,7 @@ int tcLODRepresentation::ProcessViewRequest(
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
-    // The delivered atlas (on every rendering process); nothing when the input is no atlas.
-    this->Mapper->SetInputConnection(vtkPVRenderView::GetPieceProducer(inInfo, this));
-    this->Actor->SetVisibility(
-      this->GetVisibility() && vtkPVView::GetDeliveredPiece(inInfo, this) != nullptr);
+    this->UseDeliveredAtlas(vtkPVView::GetDeliveredPiece(inInfo, this));
   }
   return 1;
 }

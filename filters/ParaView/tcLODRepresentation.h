@@ -7,10 +7,18 @@
  * Input: an atlas (tcAtlasReader, tcGeometryImages). In ParaView it is the "TriChart LOD"
  * representation type of the geometry representation (tcLODRepresentation.xml). The data goes
  * to the render view as ParaView 5.11 representations deliver it: the atlas is the piece given
- * to vtkPVView::SetPiece in REQUEST_UPDATE, with the bounds of its charts' oriented boxes (the
- * mapper's bounds) given to vtkPVRenderView::SetGeometryBounds; in REQUEST_RENDER the mapper is
- * connected to vtkPVRenderView::GetPieceProducer. The level of detail is chosen per frame by the
- * mapper, so the view's own decimated LOD is not used.
+ * to vtkPVView::SetPiece in REQUEST_UPDATE, with the mapper's bounds given to
+ * vtkPVRenderView::SetGeometryBounds; in REQUEST_RENDER the mapper draws the delivered piece
+ * (vtkPVView::GetDeliveredPiece). The level of detail is chosen per frame by the mapper, so the
+ * view's own decimated LOD is not used.
+ *
+ * One converted atlas per process: the drawing mapper converts the input in RequestData (to
+ * validate it and measure its bounds) and keeps drawing that conversion when the delivered
+ * piece is this process's own atlas (builtin session, rendering on a server). In client-server
+ * mode the client has no input; the server delivers the atlas (ParaView moves it in VTK's
+ * legacy format), and the client's mapper converts what arrives. Every process delivers a
+ * multiblock, an empty one when there is nothing to draw, so that the delivery manager moves
+ * the data on all of them alike.
  *
  * Input that is not an atlas is reported through vtkErrorMacro, with what is missing, and
  * nothing is drawn; tcGeometryImageMesh (TriChart Geometry Image Mesh) shows such data as a mesh
@@ -26,7 +34,8 @@
 #include "TriChartParaViewModule.h"
 #include "tcLODMapper.h" // for the mapper held by vtkNew
 
-#include <vtkActor.h> // for the actor held by vtkNew
+#include <vtkActor.h>             // for the actor held by vtkNew
+#include <vtkMultiBlockDataSet.h> // for the empty piece held by vtkNew
 #include <vtkNew.h>
 #include <vtkPVDataRepresentation.h>
 #include <vtkSmartPointer.h>
@@ -105,7 +114,8 @@ public:
   vtkIdType GetChartsDrawn();
   ///@}
 
-  /// True when the input is an atlas the mapper can draw (after the representation updated).
+  /// True when this process's input is an atlas the mapper can draw (after the representation
+  /// updated); false on the client of a client-server session, which has no input.
   bool GetInputIsAtlas() const { return this->Atlas != nullptr; }
 
   /// The mapper and actor that draw the atlas.
@@ -127,12 +137,22 @@ private:
   tcLODRepresentation(const tcLODRepresentation&) = delete;
   void operator=(const tcLODRepresentation&) = delete;
 
+  /// Validates `atlas` with the mapper and measures its bounds; returns it, or null (reported)
+  /// when it is not an atlas.
+  vtkSmartPointer<vtkDataObject> MeasureAtlas(vtkDataObject* atlas);
+  /// Gives the mapper what the view delivered, or nothing when the piece is empty.
+  void UseDeliveredAtlas(vtkDataObject* delivered);
+
   vtkNew<tcLODMapper> Mapper;
   vtkNew<vtkActor> Actor;
-  /// Validates the input and measures its bounds before delivery; never renders.
-  vtkNew<tcLODMapper> BoundsMapper;
   /// The atlas to deliver (a shallow copy of the input); null when the input is not an atlas.
   vtkSmartPointer<vtkDataObject> Atlas;
+  /// The input Atlas was made from, and its latest modification (TreeMTime): an unchanged
+  /// input keeps Atlas and the mapper's conversion of it.
+  vtkSmartPointer<vtkDataObject> Input;
+  vtkMTimeType InputTime = 0;
+  /// The piece delivered when there is nothing to draw.
+  vtkNew<vtkMultiBlockDataSet> NoAtlas;
   double Bounds[6] = { 1, -1, 1, -1, 1, -1 };
   std::string ColorAttribute;
 };

@@ -7,3 +7,36 @@ def check(condition, what):
     if not condition:
         failures.append(what)
         print("FAILED:", what)
+
+
+def build_atlas(ns, mesh, atlas_file, **images):
+    """Runs the static pipeline of the plugin's proxies (in `ns`, where LoadPlugin put them) on
+    `mesh` and writes the atlas to `atlas_file` with TriChart Atlas Writer; `images` sets
+    properties of TriChart Geometry Images (e.g. SampleBudget). Returns the images proxy."""
+    from paraview.simple import OutputPort, SaveData, UpdatePipeline
+    reader = ns["TriChartMeshReader"](FileName=mesh)
+    prep = ns["TriChartMeshPreparation"](Input=reader)
+    curv = ns["TriChartCurvature"](Input=prep)
+    clusters = ns["TriChartSpectralClustering"](Input=curv)
+    features = ns["TriChartFeatureRefinement"](Input=clusters)
+    base = ns["TriChartBaseComplex"](Input=features)
+    paths = ns["TriChartPathTracing"](Input=OutputPort(base, 1))
+    result = ns["TriChartGeometryImages"](Input=paths, **images)
+    UpdatePipeline(proxy=result)
+    SaveData(atlas_file, proxy=result)
+    return result
+
+
+def lit_pixels(png_file, threshold=8):
+    """(pixels brighter than `threshold` in any colour channel, all pixels) of a PNG file."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    png = vtkPNGReader()
+    png.SetFileName(png_file)
+    png.Update()
+    pixels = png.GetOutput().GetPointData().GetScalars()
+    components = pixels.GetNumberOfComponents()
+    total = pixels.GetNumberOfTuples()
+    lit = sum(1 for t in range(total)
+              if any(pixels.GetValue(t * components + c) > threshold
+                     for c in range(min(components, 3))))
+    return lit, total

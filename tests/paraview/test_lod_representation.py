@@ -8,15 +8,14 @@ import sys
 import tempfile
 
 from paraview import servermanager
-from paraview.simple import (CreateView, Delete, GroupDatasets, LoadPlugin, OutputPort, Render,
-                             ResetCamera, SaveData, SaveScreenshot, Show, Sphere, UpdatePipeline)
+from paraview.simple import (CreateView, Delete, GroupDatasets, LoadPlugin, Render, ResetCamera,
+                             SaveScreenshot, Show, Sphere, UpdatePipeline)
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkIOImage import vtkPNGReader
 
 plugin = os.environ["TRICHART_PLUGIN"]
 data = os.environ["TRICHART_TESTING_DATA"]
-from pvcheck import check, failures  # noqa: E402  (beside this script)
+from pvcheck import build_atlas, check, failures, lit_pixels  # noqa: E402  (beside this script)
 
 
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -24,18 +23,9 @@ LoadPlugin(plugin, remote=False, ns=globals())
 import trichart.TriChartParaView  # noqa: E402,F401
 
 # The static pipeline on the bundled bunny, to an atlas file and back.
-reader = TriChartMeshReader(FileName=os.path.join(data, "meshes", "bunny_npm.off"))  # noqa: F821
-prep = TriChartMeshPreparation(Input=reader)  # noqa: F821
-curv = TriChartCurvature(Input=prep)  # noqa: F821
-clusters = TriChartSpectralClustering(Input=curv)  # noqa: F821
-features = TriChartFeatureRefinement(Input=clusters)  # noqa: F821
-base = TriChartBaseComplex(Input=features)  # noqa: F821
-paths = TriChartPathTracing(Input=OutputPort(base, 1))  # noqa: F821
-images = TriChartGeometryImages(Input=paths)  # noqa: F821
-UpdatePipeline(proxy=images)
 folder = tempfile.mkdtemp(prefix="trichart-pv-")
 atlas_file = os.path.join(folder, "bunny.exr")
-SaveData(atlas_file, proxy=images)
+build_atlas(globals(), os.path.join(data, "meshes", "bunny_npm.off"), atlas_file)
 check(os.path.isfile(atlas_file), "TriChart Atlas Writer wrote the atlas")
 atlas = TriChartAtlasReader(FileName=atlas_file)  # noqa: F821
 UpdatePipeline(proxy=atlas)
@@ -72,15 +62,7 @@ check(display.LODBias == 0.0 and display.ErrorTarget == 1.0 and display.FreezeLO
 
 screenshot = os.path.join(folder, "lod.png")
 SaveScreenshot(screenshot, view, ImageResolution=[400, 400], TransparentBackground=0)
-png = vtkPNGReader()
-png.SetFileName(screenshot)
-png.Update()
-image = png.GetOutput()
-pixels = image.GetPointData().GetScalars()
-components = pixels.GetNumberOfComponents()
-lit = sum(1 for t in range(pixels.GetNumberOfTuples())
-          if any(pixels.GetValue(t * components + c) > 8 for c in range(min(components, 3))))
-total = pixels.GetNumberOfTuples()
+lit, total = lit_pixels(screenshot)
 print("non-background pixels:", lit, "of", total)
 check(0.02 * total < lit < 0.95 * total, "the atlas covers part of the picture")
 
