@@ -27,6 +27,18 @@ def build_atlas(ns, mesh, atlas_file, **images):
     return result
 
 
+def black_view(size=400):
+    """A size x size render view on black without orientation axes, so that the lit pixels of
+    its screenshot are the surface's (lit_pixels)."""
+    from paraview.simple import CreateView
+    view = CreateView("RenderView")
+    view.ViewSize = [size, size]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    return view
+
+
 def lit_pixels(png_file, threshold=8):
     """(pixels brighter than `threshold` in any colour channel, all pixels) of a PNG file."""
     from vtkmodules.vtkIOImage import vtkPNGReader

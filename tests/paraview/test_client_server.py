@@ -15,13 +15,13 @@ import sys
 import tempfile
 import time
 
-from paraview.simple import (Connect, CreateView, Delete, Disconnect, GetSources, LoadPlugin,
+from paraview.simple import (Connect, Delete, Disconnect, GetSources, LoadPlugin,
                              Render, ResetCamera, SaveScreenshot, Show, UpdatePipeline)
 
 plugin = os.environ["TRICHART_PLUGIN"]
 pvserver = os.environ.get("TRICHART_PVSERVER", "pvserver")
 data = os.environ["TRICHART_TESTING_DATA"]
-from pvcheck import build_atlas, check, failures, lit_pixels  # noqa: E402  (beside this script)
+from pvcheck import black_view, build_atlas, check, failures, lit_pixels  # noqa: E402  (beside this script)
 
 # The server may live at most this long (coreutils timeout kills it), within ctest's TIMEOUT.
 SERVER_SECONDS = 150
@@ -141,11 +141,7 @@ def session(port, folder):
     print("charts in the atlas (on the server):", charts)
     check(charts > 0, "the server reads the atlas back")
 
-    view = CreateView("RenderView")
-    view.ViewSize = [400, 400]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.0, 0.0, 0.0]
+    view = black_view()
     display = Show(atlas, view)
     display.Representation = "TriChart LOD"
     display.DiffuseColor = [1.0, 0.8, 0.2]

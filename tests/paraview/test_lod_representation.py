@@ -8,14 +8,14 @@ import sys
 import tempfile
 
 from paraview import servermanager
-from paraview.simple import (CreateView, Delete, GroupDatasets, LoadPlugin, Render, ResetCamera,
+from paraview.simple import (Delete, GroupDatasets, LoadPlugin, Render, ResetCamera,
                              SaveScreenshot, Show, Sphere, UpdatePipeline)
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
 plugin = os.environ["TRICHART_PLUGIN"]
 data = os.environ["TRICHART_TESTING_DATA"]
-from pvcheck import build_atlas, check, failures, lit_pixels  # noqa: E402  (beside this script)
+from pvcheck import black_view, build_atlas, check, failures, lit_pixels  # noqa: E402  (beside this script)
 
 
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -33,11 +33,7 @@ charts = servermanager.Fetch(atlas).GetBlock(0).GetNumberOfRows()
 print("charts in the atlas:", charts)
 check(charts > 0, "the atlas read back has charts")
 
-view = CreateView("RenderView")
-view.ViewSize = [400, 400]
-view.OrientationAxesVisibility = 0
-view.UseColorPaletteForBackground = 0
-view.Background = [0.0, 0.0, 0.0]
+view = black_view()
 display = Show(atlas, view)
 print("default representation of an atlas:", display.GetXMLName())
 check("TriChart LOD" in display.GetProperty("Representation").Available,
