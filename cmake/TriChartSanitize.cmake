@@ -1,7 +1,7 @@
 # TRICHART_SANITIZE: a build folder whose every target runs under AddressSanitizer (with its
 # leak checker) and UndefinedBehaviorSanitizer, for the core, its tests and the fuzz targets
-# (scripts/test-sanitize.sh, run by scripts/test.sh, configures one core-only in build-sanitize). Any report aborts the program,
-# so a test that triggers one fails.
+# (scripts/test-sanitize.sh, run by scripts/test.sh, configures one core-only in
+# build-sanitize). Any report aborts the program, so a test that triggers one fails.
 #
 # The code is compiled as Release is (NDEBUG: the checks are those of the shipped code) but at
 # -O1 with line tables: -O1 keeps the sanitizers' reports exact and the build short; -g1 names
