@@ -9,6 +9,8 @@
 
 #include <zlib.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -67,8 +69,123 @@ PolygonSoup toSoup(const std::string& path, const std::vector<Point>& points,
 struct PlyElement
 {
   std::string name;
+  long long count = 0;
   std::map<std::string, std::string> types;
+  /// Every property in file order: its list's size type ("" for a scalar), its value type.
+  std::vector<std::pair<std::string, std::string>> layout;
 };
+
+/// What checkHeader found: where the end_header line starts and the data after it, the format.
+struct PlyHeader
+{
+  size_t end = 0;
+  size_t body = 0;
+  std::string format;
+  std::vector<PlyElement> elements;
+};
+
+/// Bytes of a binary PLY scalar type.
+size_t plySize(const std::string& type)
+{
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+  {
+    return 1;
+  }
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+  {
+    return 2;
+  }
+  return type == "double" || type == "float64" ? 8 : 4;
+}
+
+/// Refuses a list whose declared length the whole file cannot hold, and an element of items
+/// without properties: CGAL's reader resizes a list to its declared length before it
+/// reads it, and adds an item per declared item, so one damaged count (4e9 in a face of a
+/// 411-byte file) allocates gigabytes and runs for minutes. A walk over the data, reading only
+/// the list lengths; where the data ends early it stops, and CGAL's reader reports the file.
+void checkListLengths(const std::string& path, const std::string& bytes, const PlyHeader& header)
+{
+  const bool ascii = header.format == "ascii";
+  const bool big = header.format == "binary_big_endian";
+  size_t at = header.body;
+  // The next ASCII token, or the next binary value of `type` (as a count: lists' sizes are
+  // integers); false at the end of the data.
+  const auto next = [&](const std::string& type, unsigned long long& value)
+  {
+    if (ascii)
+    {
+      at = bytes.find_first_not_of(" \t\r\n", at);
+      if (at == std::string::npos)
+      {
+        return false;
+      }
+      const size_t stop = std::min(bytes.find_first_of(" \t\r\n", at), bytes.size());
+      value = std::strtoull(bytes.substr(at, std::min<size_t>(stop - at, 24)).c_str(), nullptr, 10);
+      at = stop;
+      return true;
+    }
+    const size_t n = plySize(type);
+    if (at + n > bytes.size())
+    {
+      return false;
+    }
+    value = 0;
+    for (size_t k = 0; k < n; ++k)
+    {
+      value |= static_cast<unsigned long long>(
+                 static_cast<unsigned char>(bytes[at + (big ? n - 1 - k : k)]))
+        << (8 * k);
+    }
+    at += n;
+    return true;
+  };
+  for (const PlyElement& element : header.elements)
+  {
+    if (element.layout.empty() && element.count > 0)
+    {
+      throw InputError("'" + path + "' declares " + std::to_string(element.count) + " " +
+        element.name + " items without properties (a damaged file?)");
+    }
+    for (long long item = 0; item < element.count; ++item)
+    {
+      for (const auto& [sizeType, valueType] : element.layout)
+      {
+        unsigned long long value = 0;
+        if (!next(sizeType.empty() ? valueType : sizeType, value))
+        {
+          return;
+        }
+        const size_t itemBytes = ascii ? 2 : plySize(valueType);
+        if (!sizeType.empty() && value > bytes.size() / itemBytes)
+        {
+          throw InputError("'" + path + "' declares a list of " + std::to_string(value) +
+            " values in " + element.name + " " + std::to_string(item) + ", more than the whole " +
+            "file holds (a damaged file?)");
+        }
+        if (!sizeType.empty() && value > (bytes.size() - at) / itemBytes)
+        {
+          return; // the data ends early: CGAL's reader says how far it read
+        }
+        if (sizeType.empty())
+        {
+          continue;
+        }
+        if (!ascii)
+        {
+          at += value * itemBytes; // within the data: checked above
+          continue;
+        }
+        for (unsigned long long v = 0, skipped = 0; v < value; ++v)
+        {
+          if (!next(valueType, skipped))
+          {
+            return;
+          }
+        }
+      }
+    }
+  }
+}
 
 /// Refuses the property types CGAL's reader would mistake: it reads a property it knows by
 /// name (x, y, z of a vertex, the colour of a vertex or face, the ends of a halfedge) as the
@@ -134,14 +251,15 @@ void checkCgalTypes(const std::string& path, const PlyElement& element)
 /// Checks the header line by line, so that CGAL's reader (which assumes a well-formed header and
 /// crashes on, e.g., a property before any element) only sees headers it can parse; throws
 /// InputError naming the first line that is not PLY. Returns the offset of the end_header line.
-size_t checkHeader(const std::string& path, const std::string& bytes)
+PlyHeader checkHeader(const std::string& path, const std::string& bytes)
 {
+  PlyHeader header;
   static const std::set<std::string> types = { "char", "uchar", "short", "ushort", "int", "uint",
     "float", "double", "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32",
     "float64" };
   int number = 0;
   bool element = false;
-  std::vector<PlyElement> elements;
+  std::vector<PlyElement>& elements = header.elements;
   // The header ends where CGAL's reader ends it: at the first line whose first word is
   // end_header (not at the first "end_header" in the bytes, which may sit inside another line).
   size_t start = 0;
@@ -169,7 +287,9 @@ size_t checkHeader(const std::string& path, const std::string& bytes)
       {
         checkCgalTypes(path, e);
       }
-      return lineStart;
+      header.end = lineStart;
+      header.body = std::min(start, bytes.size());
+      return header;
     }
     bool ok = false;
     if (number == 1)
@@ -180,6 +300,7 @@ size_t checkHeader(const std::string& path, const std::string& bytes)
     {
       ok = w.size() == 3 && w[0] == "format" &&
         (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
+      header.format = ok ? w[1] : std::string();
     }
     else if (w.empty() || w[0] == "comment" || w[0] == "obj_info")
     {
@@ -190,7 +311,7 @@ size_t checkHeader(const std::string& path, const std::string& bytes)
       ok = w.size() == 3 && !w[2].empty() &&
         w[2].find_first_not_of("0123456789") == std::string::npos && w[2].size() < 12;
       element = element || ok;
-      elements.push_back({ ok ? w[1] : std::string(), {} });
+      elements.push_back({ ok ? w[1] : std::string(), ok ? std::stoll(w[2]) : 0, {}, {} });
     }
     else if (w[0] == "property" && element)
     {
@@ -199,6 +320,8 @@ size_t checkHeader(const std::string& path, const std::string& bytes)
       if (ok)
       {
         elements.back().types.emplace(w.back(), w.size() == 3 ? w[1] : "list " + w[3]);
+        elements.back().layout.emplace_back(
+          w.size() == 3 ? std::string() : w[2], w.size() == 3 ? w[1] : w[3]);
       }
     }
     if (!ok)
@@ -287,7 +410,9 @@ PolygonSoup readPLY(const std::string& path)
   {
     throw InputError("'" + path + "' is no PLY file: it does not start with 'ply'");
   }
-  const std::string header = bytes.substr(0, checkHeader(path, bytes));
+  const PlyHeader layout = checkHeader(path, bytes);
+  checkListLengths(path, bytes, layout);
+  const std::string header = bytes.substr(0, layout.end);
 
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
