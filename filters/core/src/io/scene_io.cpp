@@ -11,7 +11,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -114,6 +117,33 @@ std::string lower(std::string s)
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
+/// Refuses an MD2 model (by its signature, which Assimp also reads a file of another extension
+/// by) whose skin names Assimp's MD2 importer would read past the file's end: it takes each
+/// 64-byte name with strlen, and a name without its terminating zero at the end of the file
+/// overran the buffer (the scene fuzz target under AddressSanitizer).
+void checkMd2Skins(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < 68 || bytes.compare(0, 4, "IDP2") != 0)
+  {
+    return; // not MD2, or too short for its header: Assimp refuses it
+  }
+  int32_t header[17];
+  std::memcpy(header, bytes.data(), sizeof header); // little-endian, as MD2 and this machine
+  const int64_t skins = header[5];
+  const int64_t offset = header[11];
+  for (int64_t k = 0; k < skins; ++k)
+  {
+    const int64_t at = offset + 64 * k;
+    if (at < 0 || at + 64 > static_cast<int64_t>(bytes.size()) ||
+      std::memchr(bytes.data() + at, 0, 64) == nullptr)
+    {
+      throw InputError("cannot read '" + path + "': its MD2 skin name " + std::to_string(k) +
+        " is outside the file or has no end (a damaged file?)");
+    }
+  }
+}
 } // namespace
 
 const char* sceneExtensions()
@@ -147,12 +177,13 @@ Scene readScene(const std::string& path, const Progress& progress)
   {
     throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
   }
+  checkMd2Skins(path);
   Assimp::Importer importer;
   bool aborted = false;
   // The importer owns and deletes its progress handler.
   importer.SetProgressHandler(new ForwardProgress(progress, aborted));
-  const aiScene* scene = importer.ReadFile(
-    path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
+  const aiScene* scene =
+    importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
   if (aborted)
   {
     throw Aborted();
