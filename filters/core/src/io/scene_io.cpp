@@ -117,30 +117,56 @@ std::string lower(std::string s)
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
-/// Refuses an MD2 model (by its signature, which Assimp also reads a file of another extension
-/// by) whose skin names Assimp's MD2 importer would read past the file's end: it takes each
-/// 64-byte name with strlen, and a name without its terminating zero at the end of the file
-/// overran the buffer (the scene fuzz target under AddressSanitizer).
-void checkMd2Skins(const std::string& path)
+/// The little-endian 32-bit word at `at` of `bytes` (MD2 and binary glTF are little-endian).
+uint32_t word(const std::string& bytes, size_t at)
+{
+  uint32_t value = 0;
+  for (int k = 3; k >= 0; --k)
+  {
+    value = value << 8 | static_cast<unsigned char>(bytes[at + static_cast<size_t>(k)]);
+  }
+  return value;
+}
+
+/// Refuses, by signature (Assimp also tries a file's content on importers of other extensions),
+/// the damaged files Assimp 5.2 mishandles before it can refuse them:
+/// - an MD2 model whose skin names run past the file's end: the importer takes each 64-byte
+///   name with strlen and overran its buffer (the scene fuzz target under AddressSanitizer);
+/// - a binary glTF whose header or chunks declare more bytes than the file has: the importer
+///   allocates what they declare (2 GB for a 672-byte file the fuzz target made).
+void checkSignatures(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.size() < 68 || bytes.compare(0, 4, "IDP2") != 0)
+  const auto refuse = [&path](const std::string& what)
+  { throw InputError("cannot read '" + path + "': " + what + " (a damaged file?)"); };
+  if (bytes.size() >= 68 && bytes.compare(0, 4, "IDP2") == 0)
   {
-    return; // not MD2, or too short for its header: Assimp refuses it
-  }
-  int32_t header[17];
-  std::memcpy(header, bytes.data(), sizeof header); // little-endian, as MD2 and this machine
-  const int64_t skins = header[5];
-  const int64_t offset = header[11];
-  for (int64_t k = 0; k < skins; ++k)
-  {
-    const int64_t at = offset + 64 * k;
-    if (at < 0 || at + 64 > static_cast<int64_t>(bytes.size()) ||
-      std::memchr(bytes.data() + at, 0, 64) == nullptr)
+    const uint64_t skins = word(bytes, 20), offset = word(bytes, 44);
+    for (uint64_t k = 0; k < skins; ++k)
     {
-      throw InputError("cannot read '" + path + "': its MD2 skin name " + std::to_string(k) +
-        " is outside the file or has no end (a damaged file?)");
+      const uint64_t at = offset + 64 * k;
+      if (at + 64 > bytes.size() || std::memchr(bytes.data() + at, 0, 64) == nullptr)
+      {
+        refuse("its MD2 skin name " + std::to_string(k) + " is outside the file or has no end");
+      }
+    }
+  }
+  if (bytes.size() >= 12 && bytes.compare(0, 4, "glTF") == 0)
+  {
+    // Version 1: the scene's length at byte 12; version 2: chunks of length, type, data.
+    const uint64_t declared = word(bytes, 4) == 1
+      ? (bytes.size() >= 20 ? 20 + uint64_t(word(bytes, 12)) : bytes.size() + 1)
+      : 12;
+    uint64_t at = declared;
+    for (int chunk = 0; word(bytes, 4) != 1 && chunk < 2 && at + 8 <= bytes.size(); ++chunk)
+    {
+      at += 8 + uint64_t(word(bytes, at));
+    }
+    if (at > bytes.size())
+    {
+      refuse("its binary glTF header declares more bytes than the file's " +
+        std::to_string(bytes.size()));
     }
   }
 }
@@ -177,7 +203,7 @@ Scene readScene(const std::string& path, const Progress& progress)
   {
     throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
   }
-  checkMd2Skins(path);
+  checkSignatures(path);
   Assimp::Importer importer;
   bool aborted = false;
   // The importer owns and deletes its progress handler.
