@@ -130,8 +130,9 @@ uint32_t word(const std::string& bytes, size_t at)
 
 /// Refuses, by signature (Assimp also tries a file's content on importers of other extensions),
 /// the damaged files Assimp 5.2 mishandles before it can refuse them:
-/// - an MD2 model whose skin names run past the file's end: the importer takes each 64-byte
-///   name with strlen and overran its buffer (the scene fuzz target under AddressSanitizer);
+/// - an MD2 model whose skin names run past the file's end (the importer takes each 64-byte
+///   name with strlen and overran its buffer) or whose triangles have no vertices to index
+///   (found by the scene fuzz target under AddressSanitizer);
 /// - a binary glTF whose header or chunks declare more bytes than the file has: the importer
 ///   allocates what they declare (2 GB for a 672-byte file the fuzz target made).
 void checkSignatures(const std::string& path)
@@ -142,6 +143,16 @@ void checkSignatures(const std::string& path)
   { throw InputError("cannot read '" + path + "': " + what + " (a damaged file?)"); };
   if (bytes.size() >= 68 && bytes.compare(0, 4, "IDP2") == 0)
   {
+    // The first frame's vertices (those the importer reads) must exist and lie in the file:
+    // it clamps a triangle's vertex index to the vertex count less one, which for no vertex
+    // read far outside the file.
+    const uint64_t vertices = word(bytes, 24), frameSize = word(bytes, 16);
+    if (word(bytes, 32) > 0 &&
+      (vertices == 0 || frameSize < 40 + 4 * vertices || word(bytes, 40) == 0 ||
+        uint64_t(word(bytes, 56)) + frameSize > bytes.size()))
+    {
+      refuse("its MD2 header declares triangles without a first frame of vertices in the file");
+    }
     const uint64_t skins = word(bytes, 20), offset = word(bytes, 44);
     for (uint64_t k = 0; k < skins; ++k)
     {
