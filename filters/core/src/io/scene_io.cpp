@@ -15,8 +15,10 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace tc
 {
@@ -117,6 +119,53 @@ std::string lower(std::string s)
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
+/// Whether the object-to-object connections (C: "OO",child,parent) of an ASCII FBX file form
+/// a cycle: Assimp 5.2's FBX converter follows them depth first without marks, and a model
+/// connected to itself (from the scene fuzz target) overflowed the stack. Binary FBX stores
+/// connections as records, which this does not read.
+bool fbxConnectionsCycle(const std::string& bytes)
+{
+  std::map<int64_t, std::vector<int64_t>> children;
+  for (size_t at = bytes.find("\"OO\","); at != std::string::npos;
+       at = bytes.find("\"OO\",", at + 5))
+  {
+    char* end = nullptr;
+    const int64_t child = std::strtoll(bytes.c_str() + at + 5, &end, 10);
+    if (end && *end == ',')
+    {
+      children[std::strtoll(end + 1, nullptr, 10)].push_back(child);
+    }
+  }
+  // Depth-first, iterative, with marks: 1 on the current path, 2 done.
+  std::map<int64_t, int> mark;
+  for (const auto& [start, unused] : children)
+  {
+    std::vector<std::pair<int64_t, size_t>> path{ { start, 0 } };
+    while (!path.empty() && mark[start] != 2)
+    {
+      auto& [node, next] = path.back();
+      mark[node] = 1;
+      const auto it = children.find(node);
+      if (it == children.end() || next == it->second.size())
+      {
+        mark[node] = 2;
+        path.pop_back();
+        continue;
+      }
+      const int64_t child = it->second[next++];
+      if (mark[child] == 1)
+      {
+        return true;
+      }
+      if (mark[child] == 0)
+      {
+        path.emplace_back(child, 0);
+      }
+    }
+  }
+  return false;
+}
+
 /// The little-endian 32-bit word at `at` of `bytes` (MD2 and binary glTF are little-endian).
 uint32_t word(const std::string& bytes, size_t at)
 {
@@ -134,7 +183,8 @@ uint32_t word(const std::string& bytes, size_t at)
 ///   name with strlen and overran its buffer) or whose triangles have no vertices to index
 ///   (found by the scene fuzz target under AddressSanitizer);
 /// - a binary glTF whose header or chunks declare more bytes than the file has: the importer
-///   allocates what they declare (2 GB for a 672-byte file the fuzz target made).
+///   allocates what they declare (2 GB for a 672-byte file the fuzz target made);
+/// - an ASCII FBX whose connections form a cycle (fbxConnectionsCycle).
 void checkSignatures(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
@@ -162,6 +212,10 @@ void checkSignatures(const std::string& path)
         refuse("its MD2 skin name " + std::to_string(k) + " is outside the file or has no end");
       }
     }
+  }
+  if (bytes.compare(0, 18, "Kaydara FBX Binary") != 0 && fbxConnectionsCycle(bytes))
+  {
+    refuse("its FBX connections form a cycle (an object is its own ancestor)");
   }
   if (bytes.size() >= 12 && bytes.compare(0, 4, "glTF") == 0)
   {
