@@ -143,7 +143,7 @@ def main():
 
     counts = {"parsed": 0, "refused": 0, "help": 0}
     start = time.monotonic()
-    n = 0
+    n, crashes, hangs = 0, 0, 0
     while (time.monotonic() - start < o.seconds) if o.seconds > 0 else n < len(seeds):
         argv = mutate(rng, rng.choice(seeds), rng.choice(seeds), words) if o.seconds > 0 \
             else seeds[n]
@@ -154,19 +154,21 @@ def main():
             print(f"tc_fuzz: {shlex.join(argv)!r} ran for more than {o.timeout} s (a hang)",
                   file=sys.stderr)
             save(o.artifacts, "timeout", n, argv)
-            return 70
+            hangs = 1
         except Exception:  # noqa: BLE001 - any other exception is the crash this looks for
             traceback.print_exc()
             save(o.artifacts, "crash", n, argv)
-            return 1
+            crashes = 1
         finally:
             signal.alarm(0)
         n += 1
+        if crashes or hangs:
+            break  # as libFuzzer does: the first failure ends the run
     seconds = time.monotonic() - start
     print(f"tc_fuzz_cli: {n} executions in {seconds:.1f} s ({n / max(seconds, 1e-9):.0f}/s), "
           f"{counts['parsed']} parsed, {counts['refused']} refused, {counts['help']} help, "
-          "0 crashes, 0 hangs")
-    return 0
+          f"{crashes} crashes, {hangs} hangs")
+    return 70 if hangs else 1 if crashes else 0
 
 
 if __name__ == "__main__":
