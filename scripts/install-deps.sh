@@ -14,6 +14,9 @@ packages=(
   libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev nlohmann-json3-dev
   xvfb xauth mesa-utils libgl1-mesa-dri
   universal-ctags
+  # The sanitizer build and its libFuzzer targets (scripts/test-sanitize.sh, bench/fuzz.sh);
+  # llvm's llvm-symbolizer names the source line of each frame of a sanitizer's report.
+  clang libclang-rt-14-dev llvm
   python3-numpy python3-pytest
 )
 

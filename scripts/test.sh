@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs every TriChart test: first checks the installed package from outside the source tree,
 # then the whole CTest suite (core GoogleTest, VTK image tests, Python, pvpython plugin and
-# app tests) under a virtual X server. Run scripts/setup.sh first.
+# app tests) under a virtual X server, then the core tests and every bad-input case again in a
+# second build under AddressSanitizer and UndefinedBehaviorSanitizer (scripts/test-sanitize.sh;
+# TRICHART_SKIP_SANITIZE=1 skips it). Run scripts/setup.sh first. Arguments go to the first ctest.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${TRICHART_BUILD_DIR:-$here/build}"
@@ -20,4 +22,13 @@ fi
 
 echo "test: ctest"
 cd "$build"
-xvfb-run -a -s '-screen 0 1280x1024x24' ctest --output-on-failure -j 2 "$@"
+status=0
+xvfb-run -a -s '-screen 0 1280x1024x24' ctest --output-on-failure -j 2 "$@" || status=$?
+
+# The sanitizer build lives here, not in scripts/setup.sh: it is for testing only, installs
+# nothing, and a user who sets up to use TriChart does not wait for it. It runs even when the
+# first suite failed, so that one run reports both.
+if [ "${TRICHART_SKIP_SANITIZE:-0}" != 1 ]; then
+  bash "$here/scripts/test-sanitize.sh" || status=$?
+fi
+exit $status

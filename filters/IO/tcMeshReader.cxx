@@ -22,9 +22,12 @@
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkXMLPolyDataReader.h>
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -185,6 +188,34 @@ ReadResult ReadWithCore(const std::string& fileName, const std::string& format)
   return read;
 }
 
+/// Why vtkSTLReader must not read `fileName`, or "": a binary STL whose triangle count needs
+/// more bytes than the file holds. vtkSTLReader allocates what the count says, and a failed
+/// allocation aborts the process (a damaged count of 5e9 did). Binary is decided as
+/// vtkSTLReader decides it, by vtksys's DetectFileType.
+std::string BinarySTLError(const std::string& fileName)
+{
+  if (vtksys::SystemTools::DetectFileType(fileName.c_str()) != vtksys::SystemTools::FileTypeBinary)
+  {
+    return "";
+  }
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(fileName, ec);
+  std::ifstream in(fileName, std::ios::binary);
+  unsigned char count[4] = { 0, 0, 0, 0 };
+  if (ec || !in.seekg(80) || !in.read(reinterpret_cast<char*>(count), 4))
+  {
+    return "a binary STL file needs an 80-byte header and a triangle count";
+  }
+  const uint64_t triangles = count[0] | count[1] << 8 | count[2] << 16 | uint64_t(count[3]) << 24;
+  if (84 + 50 * triangles > bytes)
+  {
+    return "the binary STL header declares " + std::to_string(triangles) +
+      " triangles, which need " + std::to_string(84 + 50 * triangles) +
+      " bytes, but the file has " + std::to_string(bytes) + " (truncated or damaged)";
+  }
+  return "";
+}
+
 /// An STL, VTP or legacy VTK file through VTK's readers, whose first error message is kept.
 /// Legacy VTK files may hold any dataset; non-polydata is reduced to its outer surface.
 ReadResult ReadWithVTK(const std::string& fileName, const std::string& format)
@@ -193,6 +224,12 @@ ReadResult ReadWithVTK(const std::string& fileName, const std::string& format)
   vtkSmartPointer<vtkAlgorithm> reader;
   if (format == "stl")
   {
+    ReadResult refused;
+    refused.error = BinarySTLError(fileName);
+    if (!refused.error.empty())
+    {
+      return refused;
+    }
     vtkNew<vtkSTLReader> stl;
     stl->SetFileName(fileName.c_str());
     stl->MergingOff();

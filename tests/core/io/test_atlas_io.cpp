@@ -575,11 +575,27 @@ std::string deflated(const std::string& text)
   return packed;
 }
 
+/// Removes attribute `name` from `header`. Not with Header::erase: OpenEXR 3.1 (Debian 12's)
+/// drops the attribute from its map without deleting it (fixed upstream in 2023, openexr#1520),
+/// a leak the sanitizer build reports. A header of every other attribute replaces it instead.
+void eraseAttribute(Imf::Header& header, const char* name)
+{
+  Imf::Header rebuilt;
+  for (Imf::Header::ConstIterator it = header.begin(); it != header.end(); ++it)
+  {
+    if (std::strcmp(it.name(), name) != 0)
+    {
+      rebuilt.insert(it.name(), it.attribute());
+    }
+  }
+  header = std::move(rebuilt);
+}
+
 /// Replaces the metadata of part 0 by `text` as version 2 stores it (deflated, with its length),
 /// with a matching checksum when `fixChecksum`.
 void setMetadata(std::vector<ExrPart>& parts, const std::string& text, bool fixChecksum = true)
 {
-  parts[0].header.erase("trichartAtlas");
+  eraseAttribute(parts[0].header, "trichartAtlas");
   parts[0].header.insert("trichartAtlasZ", Imf::StringAttribute(deflated(text)));
   parts[0].header.insert("trichartAtlasLength", Imf::IntAttribute(static_cast<int>(text.size())));
   if (fixChecksum)
@@ -591,8 +607,8 @@ void setMetadata(std::vector<ExrPart>& parts, const std::string& text, bool fixC
 /// Replaces the metadata of part 0 by `text` as version 1 stored it: plain, with its checksum.
 void setPlainMetadata(std::vector<ExrPart>& parts, const std::string& text)
 {
-  parts[0].header.erase("trichartAtlasZ");
-  parts[0].header.erase("trichartAtlasLength");
+  eraseAttribute(parts[0].header, "trichartAtlasZ");
+  eraseAttribute(parts[0].header, "trichartAtlasLength");
   parts[0].header.insert("trichartAtlas", Imf::StringAttribute(text));
   parts[0].header.insert("trichartAtlasCrc32", Imf::IntAttribute(crc32Of(text)));
 }
@@ -1225,8 +1241,8 @@ TEST_F(AtlasIo, RefusesDamagedCompressedMetadata)
   EXPECT_LT(peakMiB() - before, 64) << "the declared length was allocated";
   error = withLength([](int) { return -5; });
   EXPECT_TRUE(mentions(error, "declares a length of -5 bytes")) << error;
-  error =
-    damagedError([](std::vector<ExrPart>& parts) { parts[0].header.erase("trichartAtlasLength"); });
+  error = damagedError(
+    [](std::vector<ExrPart>& parts) { eraseAttribute(parts[0].header, "trichartAtlasLength"); });
   EXPECT_TRUE(mentions(error, "has no 'trichartAtlasLength' attribute")) << error;
 }
 

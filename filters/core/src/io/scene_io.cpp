@@ -11,9 +11,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace tc
 {
@@ -114,6 +119,122 @@ std::string lower(std::string s)
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
+/// Whether the object-to-object connections (C: "OO",child,parent) of an ASCII FBX file form
+/// a cycle: Assimp 5.2's FBX converter follows them depth first without marks, and a model
+/// connected to itself (from the scene fuzz target) overflowed the stack. Binary FBX stores
+/// connections as records, which this does not read.
+bool fbxConnectionsCycle(const std::string& bytes)
+{
+  std::map<int64_t, std::vector<int64_t>> children;
+  for (size_t at = bytes.find("\"OO\","); at != std::string::npos;
+       at = bytes.find("\"OO\",", at + 5))
+  {
+    char* end = nullptr;
+    const int64_t child = std::strtoll(bytes.c_str() + at + 5, &end, 10);
+    if (end && *end == ',')
+    {
+      children[std::strtoll(end + 1, nullptr, 10)].push_back(child);
+    }
+  }
+  // Depth-first, iterative, with marks: 1 on the current path, 2 done.
+  std::map<int64_t, int> mark;
+  for (const auto& [start, unused] : children)
+  {
+    std::vector<std::pair<int64_t, size_t>> path{ { start, 0 } };
+    while (!path.empty() && mark[start] != 2)
+    {
+      auto& [node, next] = path.back();
+      mark[node] = 1;
+      const auto it = children.find(node);
+      if (it == children.end() || next == it->second.size())
+      {
+        mark[node] = 2;
+        path.pop_back();
+        continue;
+      }
+      const int64_t child = it->second[next++];
+      if (mark[child] == 1)
+      {
+        return true;
+      }
+      if (mark[child] == 0)
+      {
+        path.emplace_back(child, 0);
+      }
+    }
+  }
+  return false;
+}
+
+/// The little-endian 32-bit word at `at` of `bytes` (MD2 and binary glTF are little-endian).
+uint32_t word(const std::string& bytes, size_t at)
+{
+  uint32_t value = 0;
+  for (int k = 3; k >= 0; --k)
+  {
+    value = value << 8 | static_cast<unsigned char>(bytes[at + static_cast<size_t>(k)]);
+  }
+  return value;
+}
+
+/// Refuses, by signature (Assimp also tries a file's content on importers of other extensions),
+/// the damaged files Assimp 5.2 mishandles before it can refuse them:
+/// - an MD2 model whose skin names run past the file's end (the importer takes each 64-byte
+///   name with strlen and overran its buffer) or whose triangles have no vertices to index
+///   (found by the scene fuzz target under AddressSanitizer);
+/// - a binary glTF whose header or chunks declare more bytes than the file has: the importer
+///   allocates what they declare (2 GB for a 672-byte file the fuzz target made);
+/// - an ASCII FBX whose connections form a cycle (fbxConnectionsCycle).
+void checkSignatures(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto refuse = [&path](const std::string& what)
+  { throw InputError("cannot read '" + path + "': " + what + " (a damaged file?)"); };
+  if (bytes.size() >= 68 && bytes.compare(0, 4, "IDP2") == 0)
+  {
+    // The first frame's vertices (those the importer reads) must exist and lie in the file:
+    // it clamps a triangle's vertex index to the vertex count less one, which for no vertex
+    // read far outside the file.
+    const uint64_t vertices = word(bytes, 24), frameSize = word(bytes, 16);
+    if (word(bytes, 32) > 0 &&
+      (vertices == 0 || frameSize < 40 + 4 * vertices || word(bytes, 40) == 0 ||
+        uint64_t(word(bytes, 56)) + frameSize > bytes.size()))
+    {
+      refuse("its MD2 header declares triangles without a first frame of vertices in the file");
+    }
+    const uint64_t skins = word(bytes, 20), offset = word(bytes, 44);
+    for (uint64_t k = 0; k < skins; ++k)
+    {
+      const uint64_t at = offset + 64 * k;
+      if (at + 64 > bytes.size() || std::memchr(bytes.data() + at, 0, 64) == nullptr)
+      {
+        refuse("its MD2 skin name " + std::to_string(k) + " is outside the file or has no end");
+      }
+    }
+  }
+  if (bytes.compare(0, 18, "Kaydara FBX Binary") != 0 && fbxConnectionsCycle(bytes))
+  {
+    refuse("its FBX connections form a cycle (an object is its own ancestor)");
+  }
+  if (bytes.size() >= 12 && bytes.compare(0, 4, "glTF") == 0)
+  {
+    // Version 1: the scene's length at byte 12; version 2: chunks of length, type, data.
+    const uint64_t declared = word(bytes, 4) == 1
+      ? (bytes.size() >= 20 ? 20 + uint64_t(word(bytes, 12)) : bytes.size() + 1)
+      : 12;
+    uint64_t at = declared;
+    for (int chunk = 0; word(bytes, 4) != 1 && chunk < 2 && at + 8 <= bytes.size(); ++chunk)
+    {
+      at += 8 + uint64_t(word(bytes, at));
+    }
+    if (at > bytes.size())
+    {
+      refuse("its binary glTF header declares more bytes than the file's " +
+        std::to_string(bytes.size()));
+    }
+  }
+}
 } // namespace
 
 const char* sceneExtensions()
@@ -147,12 +268,13 @@ Scene readScene(const std::string& path, const Progress& progress)
   {
     throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
   }
+  checkSignatures(path);
   Assimp::Importer importer;
   bool aborted = false;
   // The importer owns and deletes its progress handler.
   importer.SetProgressHandler(new ForwardProgress(progress, aborted));
-  const aiScene* scene = importer.ReadFile(
-    path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
+  const aiScene* scene =
+    importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
   if (aborted)
   {
     throw Aborted();
