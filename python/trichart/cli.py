@@ -329,6 +329,11 @@ def _parser(d):
 def _check_args(parser, args, d):
     """Refuses values out of the filters' ranges: the filters clamp them silently; a command
     line says what is wrong instead."""
+    for name, value in vars(args).items():
+        # argparse reads the '--' of `--clusters=--` as the end of the options and gives the
+        # option an empty list: no option here takes a list, so it had no value.
+        if isinstance(value, list):
+            parser.error(f"--{name.replace('_', '-')} needs a value, not '--'")
     if args.command == "build":
         images, features, base = d.images, d.features, d.base
         low, high = images.GetStretchIterationsMinValue(), images.GetStretchIterationsMaxValue()
