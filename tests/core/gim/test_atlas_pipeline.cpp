@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -24,6 +25,7 @@ struct Built
 {
   const tctest::PipelineCase* input = nullptr;
   tc::PatchMesh patches;
+  tc::GeometryImageOptions options;
   tc::Atlas atlas;
 };
 
@@ -43,7 +45,7 @@ const Built* builtFor(const std::string& name)
     slot->patches = tc::tracePaths(c->mesh, c->result);
     // Eight samples per input point: enough levels for neighbours 3+ levels apart even where
     // the base complex keeps many small charts.
-    tc::GeometryImageOptions options;
+    tc::GeometryImageOptions& options = slot->options;
     options.sampleBudget = std::max<int64_t>(
       8 * c->mesh.numPoints(), 400 * static_cast<int64_t>(c->result.baseTriangles.size() / 3));
     slot->atlas = tc::buildGeometryImages(slot->patches, c->result, {}, {}, {}, options);
@@ -95,6 +97,45 @@ TEST_P(AtlasOnMesh, IsAValidAtlas)
   EXPECT_NO_THROW(tc::validateAtlas(B_->atlas));
   EXPECT_EQ(B_->atlas.charts.size(), B_->input->result.baseTriangles.size() / 3);
   EXPECT_EQ(B_->atlas.inputTriangles, B_->input->mesh.numTriangles());
+}
+
+TEST_P(AtlasOnMesh, FittedInteriorSamplesMoveNoFartherThanTheInterpolatedError)
+{
+  // The same atlas with interpolated samples: the levels are chosen before the fit, so the
+  // charts agree on them, and each fitted interior sample of a chart's finest level lies within
+  // that chart's interpolated levelError of where interpolation put it.
+  tc::GeometryImageOptions options = B_->options;
+  options.fitSamples = false;
+  const tc::Atlas interpolated =
+    tc::buildGeometryImages(B_->patches, B_->input->result, {}, {}, {}, options);
+  const tc::Atlas& fitted = B_->atlas;
+  ASSERT_EQ(fitted.charts.size(), interpolated.charts.size());
+  double worst = 0.0; // largest offset over its bound
+  int64_t moved = 0;
+  for (size_t c = 0; c < fitted.charts.size(); ++c)
+  {
+    const int32_t d = fitted.charts[c].maxLevel, n = 1 << d;
+    ASSERT_EQ(d, interpolated.charts[c].maxLevel) << "chart " << c;
+    const double bound = interpolated.charts[c].levelError[static_cast<size_t>(d)];
+    for (int32_t j = 1; j < n; ++j)
+    {
+      for (int32_t i = 1; i + j < n; ++i)
+      {
+        const float* f = tc::atlasSample(fitted, static_cast<int32_t>(c), 0, d, i, j);
+        const float* s = tc::atlasSample(interpolated, static_cast<int32_t>(c), 0, d, i, j);
+        const double offset = std::sqrt(double(f[0] - s[0]) * (f[0] - s[0]) +
+          double(f[1] - s[1]) * (f[1] - s[1]) + double(f[2] - s[2]) * (f[2] - s[2]));
+        moved += offset > 0.0 ? 1 : 0;
+        // Float samples and the stored error round by a few 1e-7 of the model's size.
+        worst = std::max(worst, (offset - bound) / fitted.inputDiagonal);
+      }
+    }
+  }
+  std::printf("%s: %lld interior samples fitted; largest offset beyond the interpolated error "
+              "%.3g of the diagonal\n",
+    GetParam().c_str(), static_cast<long long>(moved), worst);
+  EXPECT_GT(moved, 0);
+  EXPECT_LE(worst, 1e-6);
 }
 
 TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacteristic)
@@ -169,6 +210,5 @@ TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
   EXPECT_LE(largest[1], largest[0]);
 }
 
-INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh,
-  ::testing::ValuesIn(tctest::pipelineMeshes()),
+INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh, ::testing::ValuesIn(tctest::pipelineMeshes()),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });

@@ -166,7 +166,9 @@ void finishCharts(const TriMesh& mesh, const std::vector<PatchParameterization>&
       ch.maxLevel = level[c];
       if (fitSamples)
       {
-        fitInterior(mesh, param[c], grids[c], level[c]);
+        // ch.levelError is still the interpolated grid's (step 4): the bound of the fit.
+        fitInterior(
+          mesh, param[c], grids[c], level[c], ch.levelError[static_cast<size_t>(level[c])]);
         ch.levelError = chartLevelErrors(mesh, param[c], grids[c], creases[c], level[c]);
         ch.box = chartBox(mesh, param[c], &grids[c], level[c]);
       }

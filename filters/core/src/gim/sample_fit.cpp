@@ -331,7 +331,8 @@ void fitSide(const SamplingInput& in, int32_t e, const std::vector<int32_t>& lev
 // (shared with the neighbours) keep delta = 0; mu (a membrane on the offsets, relative to the
 // mean data weight per sample) keeps the offsets smooth where a sample has little data, lambda
 // keeps the system definite.
-void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid& g, int32_t d)
+void fitInterior(
+  const TriMesh& mesh, const PatchParameterization& p, ChartGrid& g, int32_t d, double maxOffset)
 {
   InteriorFit fit(d);
   if (fit.nu == 0)
@@ -355,9 +356,11 @@ void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid&
     {
       float* s = g.at(d, i, j);
       const int32_t a = fit.unknown[fit.index(i, j)];
+      const double length = delta.row(a).norm();
+      const double scale = maxOffset > 0.0 && length > maxOffset ? maxOffset / length : 1.0;
       for (int x = 0; x < 3; ++x)
       {
-        s[x] = static_cast<float>(s[x] + delta(a, x));
+        s[x] = static_cast<float>(s[x] + scale * delta(a, x));
       }
     }
   }

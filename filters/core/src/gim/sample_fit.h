@@ -24,7 +24,12 @@ void fitSide(const SamplingInput& in, int32_t e, const std::vector<int32_t>& lev
   const std::vector<PathSamples>& paths, std::vector<ChartGrid>& grids);
 
 /// Moves the interior samples of level d of a chart (grid g at stride g.n / 2^d) off the
-/// surface to fit it in the least-squares sense; side and corner samples stay. Writes back the
-/// positions only.
-void fitInterior(const TriMesh& mesh, const PatchParameterization& p, ChartGrid& g, int32_t d);
+/// surface to fit it in the least-squares sense; side and corner samples stay. No sample moves
+/// farther than `maxOffset` (its offset is shortened to it; 0: no bound): a sample that few
+/// data constrain, next to a crease side, can be pulled farther from the surface than the
+/// interpolated grid ever was, which lowers the RMS and raises the largest error. Writes back
+/// the positions only.
+/// @param[in] maxOffset  the chart's interpolated levelError at d, in input units
+void fitInterior(
+  const TriMesh& mesh, const PatchParameterization& p, ChartGrid& g, int32_t d, double maxOffset);
 } // namespace tc::detail::geometry_images

@@ -49,7 +49,8 @@
 ///   them put on the straight lines it is drawn with, then each chart's interior samples at its
 ///   d_max to its patch, by least squares (data: the points and the triangles' centroids at
 ///   their (u, v), weighted by area; a weak membrane on the offsets keeps them smooth where a
-///   sample has little data). Paths along feature curves stay on the curve; corners stay on
+///   sample has little data; no interior sample moves farther than the chart's interpolated
+///   levelError at d_max). Paths along feature curves stay on the curve; corners stay on
 ///   their base vertex; both charts of a side still copy the same floats at every level both
 ///   have. levelError and the box are measured on the fitted samples. Normals and extra
 ///   attributes stay interpolated.
