@@ -7,6 +7,8 @@
 /// saved, an abort or a signal is reported, and the figures (executions, per second) printed.
 #pragma once
 
+#include "input_files.h"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
@@ -257,25 +259,7 @@ private:
 inline std::vector<Bytes> readInputs(const std::vector<std::string>& paths)
 {
   namespace fs = std::filesystem;
-  std::vector<fs::path> files;
-  for (const std::string& path : paths)
-  {
-    if (!fs::is_directory(path))
-    {
-      files.emplace_back(path);
-      continue;
-    }
-    std::vector<fs::path> inFolder;
-    for (const fs::directory_entry& entry : fs::directory_iterator(path))
-    {
-      if (entry.is_regular_file())
-      {
-        inFolder.push_back(entry.path());
-      }
-    }
-    std::sort(inFolder.begin(), inFolder.end());
-    files.insert(files.end(), inFolder.begin(), inFolder.end());
-  }
+  const std::vector<fs::path> files = inputFiles(paths);
   std::vector<Bytes> inputs;
   for (const fs::path& file : files)
   {

@@ -4,7 +4,8 @@
 // libFuzzer, so that the seed corpora and the crash inputs found run as regression tests in
 // any build. Arguments starting with '-' (libFuzzer's options) are ignored, so one command line
 // serves both mains.
-#include <algorithm>
+#include "input_files.h"
+
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -15,35 +16,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 
-namespace
-{
 namespace fs = std::filesystem;
-
-/// The files named: a file itself, a folder's regular files in name order.
-std::vector<fs::path> inputsOf(const std::vector<std::string>& args)
-{
-  std::vector<fs::path> inputs;
-  for (const std::string& arg : args)
-  {
-    if (!fs::is_directory(arg))
-    {
-      inputs.emplace_back(arg);
-      continue;
-    }
-    std::vector<fs::path> files;
-    for (const fs::directory_entry& entry : fs::directory_iterator(arg))
-    {
-      if (entry.is_regular_file())
-      {
-        files.push_back(entry.path());
-      }
-    }
-    std::sort(files.begin(), files.end());
-    inputs.insert(inputs.end(), files.begin(), files.end());
-  }
-  return inputs;
-}
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -55,7 +28,7 @@ int main(int argc, char** argv)
       args.emplace_back(argv[i]);
     }
   }
-  const std::vector<fs::path> inputs = inputsOf(args);
+  const std::vector<fs::path> inputs = tcfuzz::inputFiles(args);
   if (inputs.empty())
   {
     std::fprintf(stderr, "usage: %s FILE|FOLDER...: no input to replay\n", argv[0]);
