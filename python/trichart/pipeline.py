@@ -127,8 +127,8 @@ def format_bytes(n):
 
 def _stage_defaults():
     """The options of the estimate that the filters default (one home for each)."""
-    return {"max_level": TriChartGeometryImages.tcGeometryImages().GetMaxLevel(),
-            "sample_budget": TriChartGeometryImages.tcGeometryImages().GetSampleBudget(),
+    images = TriChartGeometryImages.tcGeometryImages()
+    return {"max_level": images.GetMaxLevel(), "sample_budget": images.GetSampleBudget(),
             "target_faces": TriChartBaseComplex.tcBaseComplex().GetTargetFaces(),
             "nystrom_threshold": TriChartFeatures.tcSpectralClustering().GetNystromThreshold()}
 
