@@ -121,6 +121,7 @@ int tcGeometryImages::RequestData(
 
   // 4. Parameterize, resample, pack.
   tc::GeometryImageOptions options;
+  options.errorTarget = this->ErrorTarget;
   options.sampleBudget = this->SampleBudget;
   options.minLevel = this->MinLevel;
   options.maxLevel = this->MaxLevel;
@@ -151,6 +152,7 @@ int tcGeometryImages::RequestData(
 void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "SampleBudget: " << this->SampleBudget << "\n";
   os << indent << "MinLevel: " << this->MinLevel << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";

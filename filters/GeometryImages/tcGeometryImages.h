@@ -8,7 +8,8 @@
  * three paths fixed on the sides by arc length, then reweighted to lower its stretch, see
  * SetStretchIterations) and resampled on grids of 2^d + 1 samples per
  * side for d = 0 .. d_max, d_max following the patch's curvature-weighted area under a total
- * sample budget (or by measured error under it, see SetLevelRule). Shared sides are sampled once
+ * sample budget (or, by default, by measured error down to an error target, see SetLevelRule
+ * and SetErrorTarget). Shared sides are sampled once
  * along their path, so neighbouring charts hold bit-identical samples there and stitch without
  * cracks. Two charts of close resolution share each (2^dh + 2) x (2^dh + 1) rectangle. Every chart
  * also gets an oriented bounding box and an error estimate per level.
@@ -39,7 +40,16 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Total samples over all charts at their finest level; 0 uses the input's point count.
+  /// The Error level rule's goal, a fraction of the input's bounding-box diagonal: a chart
+  /// rises to finer levels while its measured error is above it (up to MaxLevel and the
+  /// budget), and no further. 0: no goal, the budget alone decides.
+  vtkSetClampMacro(ErrorTarget, double, 0.0, 0.5);
+  vtkGetMacro(ErrorTarget, double);
+  ///@}
+
+  ///@{
+  /// Total samples over all charts at their finest level; 0: as many as the ErrorTarget needs
+  /// (up to 16 times the input's points), or with no target the input's point count.
   vtkSetClampMacro(SampleBudget, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(SampleBudget, vtkIdType);
   ///@}
@@ -60,9 +70,10 @@ public:
   ///@}
 
   ///@{
-  /// How each chart's d_max is chosen under the budget: Area (0) makes 4^d_max proportional to
-  /// the curvature-weighted area (paper section 5.2); Error (1, the default) measures every
-  /// chart up to two levels above that and spends the budget on the largest measured error.
+  /// How each chart's d_max is chosen: Area (0) makes 4^d_max proportional to the
+  /// curvature-weighted area under the budget (paper section 5.2); Error (1, the default)
+  /// measures each chart's error level by level and raises the charts with the largest error
+  /// until every one is below ErrorTarget (or the budget or MaxLevel stops it).
   enum LevelRules
   {
     LEVEL_RULE_AREA = 0,
@@ -110,6 +121,7 @@ private:
   tcGeometryImages(const tcGeometryImages&) = delete;
   void operator=(const tcGeometryImages&) = delete;
 
+  double ErrorTarget = tc::GeometryImageOptions{}.errorTarget;
   vtkIdType SampleBudget = tc::GeometryImageOptions{}.sampleBudget;
   int MinLevel = tc::GeometryImageOptions{}.minLevel;
   int MaxLevel = tc::GeometryImageOptions{}.maxLevel;

@@ -93,6 +93,7 @@ def _build_options(args):
             "feature_options": {"crease_angle": args.crease_angle},
             "base_options": {"target_faces": args.base_faces, "max_error": args.max_error},
             "geometry_options": {"max_level": args.max_level, "sample_budget": args.budget,
+                                 "error_target": args.error_target,
                                  "stretch_iterations": args.stretch_iterations,
                                  "fit_samples": not args.no_fit},
             "prepare_options": _repair_options(args)}
@@ -277,8 +278,14 @@ def _add_build_parser(sub, d):
     p.add_argument("--max-level", type=int, default=d.images.GetMaxLevel(),
                    help=f"largest chart level, 2^d + 1 samples per side (default "
                         f"{d.images.GetMaxLevel()})")
+    p.add_argument("--error-target", type=float, default=d.images.GetErrorTarget(),
+                   help=f"each chart's measured error is brought below this fraction of the "
+                        f"diagonal, level by level (default {d.images.GetErrorTarget():g}; 0: "
+                        f"no target, the budget alone)")
     p.add_argument("--budget", type=int, default=d.images.GetSampleBudget(),
-                   help="total samples at the finest levels (default: the mesh's point count)")
+                   help="total samples at the finest levels (default: as many as the error "
+                        "target needs, up to 16 times the mesh's points; with --error-target 0 "
+                        "the mesh's point count)")
     _add_repair_options(p, d)
     p.add_argument("--stretch-iterations", type=int, default=d.images.GetStretchIterations(),
                    help=f"stretch-reducing passes over each chart's mean-value map, "

@@ -311,8 +311,10 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     """tcGeometryImages on trace_paths' first output; returns the atlas (a multiblock of the
     chart table and one image per mip step).
 
-    Options: sample_budget, min_level, max_level, curvature_weight, level_rule (0: by
-    curvature-weighted area, 1: by measured error, the default), stretch_iterations
+    Options: error_target (fraction of the diagonal that every chart's measured error is
+    brought below; 0, the default: none), sample_budget, min_level, max_level,
+    curvature_weight, level_rule (0: by curvature-weighted area, 1: by measured error, the
+    default), stretch_iterations
     (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone).
     """
     f = TriChartGeometryImages.tcGeometryImages()

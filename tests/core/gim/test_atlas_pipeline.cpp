@@ -210,5 +210,40 @@ TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
   EXPECT_LE(largest[1], largest[0]);
 }
 
+TEST_P(AtlasOnMesh, ErrorTargetRaisesEachChartToTheFirstLevelBelowIt)
+{
+  // A target of 1% of the diagonal (which no mesh here needs 16x its points for) and no budget (interpolated samples, whose levelError is
+  // the one the rule measured): every chart ends at the first level whose error is at or below
+  // the target, or at maxLevel; none stops above it while a level is left, and none is finer
+  // than the target needs.
+  const tctest::PipelineCase& c = *B_->input;
+  tc::GeometryImageOptions options;
+  options.errorTarget = 1e-2;
+  options.fitSamples = false;
+  const tc::Atlas atlas = tc::buildGeometryImages(B_->patches, c.result, {}, {}, {}, options);
+  const double target = options.errorTarget * atlas.inputDiagonal;
+  int64_t samples = 0, atMaxLevel = 0;
+  for (size_t k = 0; k < atlas.charts.size(); ++k)
+  {
+    const tc::AtlasChart& ch = atlas.charts[k];
+    const size_t d = static_cast<size_t>(ch.maxLevel);
+    const int64_t n = int64_t(1) << ch.maxLevel;
+    samples += (n + 1) * (n + 2) / 2;
+    atMaxLevel += ch.maxLevel == options.maxLevel ? 1 : 0;
+    if (ch.maxLevel < options.maxLevel)
+    {
+      EXPECT_LE(ch.levelError[d], target) << "chart " << k << " stopped above the target";
+    }
+    if (ch.maxLevel > options.minLevel)
+    {
+      EXPECT_GT(ch.levelError[d - 1], target) << "chart " << k << " is finer than needed";
+    }
+  }
+  std::printf("%s: target 1%%: %lld samples for %lld input points, %lld of %zu charts at "
+              "maxLevel\n",
+    GetParam().c_str(), static_cast<long long>(samples), static_cast<long long>(c.mesh.numPoints()),
+    static_cast<long long>(atMaxLevel), atlas.charts.size());
+}
+
 INSTANTIATE_TEST_SUITE_P(Atlas, AtlasOnMesh, ::testing::ValuesIn(tctest::pipelineMeshes()),
   [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });

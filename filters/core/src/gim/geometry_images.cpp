@@ -14,6 +14,7 @@
 #include "tc/common/parallel.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -95,44 +96,106 @@ void parameterizePatches(const PatchMesh& patches, const BaseComplexResult& base
   }
 }
 
-/// Step 4: every chart's grid at its sampled level and its levelError at every level up to it,
-/// in parallel; also the creases of every patch, which the errors are measured along.
+/// The indices i with mask[i] set (all of them for an empty mask) of 0 .. n - 1.
+std::vector<int32_t> selected(int32_t n, const std::vector<uint8_t>& mask)
+{
+  std::vector<int32_t> out;
+  for (int32_t i = 0; i < n; ++i)
+  {
+    if (mask.empty() || mask[static_cast<size_t>(i)])
+    {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
+/// Step 4: the grids of the charts in `which` at their sampled level and their levelError at
+/// every level up to it, in parallel; also their creases (once), which the errors are measured
+/// along.
 void sampleCharts(const SamplingInput& in, const std::vector<PatchParameterization>& param,
   const std::vector<int32_t>& sampled, const std::vector<PathSamples>& paths,
-  std::vector<AtlasChart>& charts, std::vector<ChartGrid>& grids, std::vector<Creases>& creases,
-  const Progress& progress)
+  const std::vector<int32_t>& which, std::vector<AtlasChart>& charts, std::vector<ChartGrid>& grids,
+  std::vector<Creases>& creases, const Progress& progress)
 {
   const int32_t nc = in.L.numCharts;
   const TriMesh& mesh = in.patches.mesh;
-  grids.assign(nc, {});
-  creases.assign(nc, {});
-  parallel_for(
-    nc,
-    [&](int64_t c)
+  grids.resize(nc);
+  if (creases.empty())
+  {
+    creases.resize(nc);
+    for (int32_t c = 0; c < nc; ++c)
     {
       creases[c] = patchCreases(mesh, param[c]);
-      grids[c] =
-        sampleChartGrid(in, param[c], charts[c], static_cast<int32_t>(c), sampled[c], paths);
+    }
+  }
+  const int64_t n = static_cast<int64_t>(which.size());
+  parallel_for(
+    n,
+    [&](int64_t k)
+    {
+      const int32_t c = which[static_cast<size_t>(k)];
+      grids[c] = sampleChartGrid(in, param[c], charts[c], c, sampled[c], paths);
       charts[c].levelError = chartLevelErrors(mesh, param[c], grids[c], creases[c], sampled[c]);
     },
-    progress, blockSteps(nc));
+    progress, blockSteps(n));
 }
 
-/// Step 3: every path sampled at the finer sampled level of its two charts, in parallel.
-std::vector<PathSamples> samplePaths(
-  const SamplingInput& in, const std::vector<int32_t>& sampled, const Progress& progress)
+/// Step 3: the paths in `which` sampled at the finer sampled level of their two charts, in
+/// parallel.
+void samplePaths(const SamplingInput& in, const std::vector<int32_t>& sampled,
+  const std::vector<int32_t>& which, std::vector<PathSamples>& paths, const Progress& progress)
 {
   const Layout& L = in.L;
-  std::vector<PathSamples> paths(L.numEdges);
+  paths.resize(L.numEdges);
+  const int64_t n = static_cast<int64_t>(which.size());
   parallel_for(
-    L.numEdges,
-    [&](int64_t e)
+    n,
+    [&](int64_t k)
     {
+      const int32_t e = which[static_cast<size_t>(k)];
       const int32_t level = std::max(sampled[L.edgeChart[2 * e]], sampled[L.edgeChart[2 * e + 1]]);
-      paths[e] = samplePath(in, static_cast<int32_t>(e), level);
+      paths[e] = samplePath(in, e, level);
     },
-    progress, blockSteps(L.numEdges));
-  return paths;
+    progress, blockSteps(n));
+}
+
+/// Steps 3 and 4 for every chart, then, while an errorTarget is set, again for the charts whose
+/// error at their sampled level is above it (raised one level, within the measured budget), for
+/// their paths, and for the charts across those paths (whose sides are copied from them).
+void sampleAndMeasure(const SamplingInput& in, const std::vector<PatchParameterization>& param,
+  const GeometryImageOptions& o, const SampleBudgets& budgets, double diagonal,
+  std::vector<int32_t>& sampled, std::vector<PathSamples>& paths, std::vector<AtlasChart>& charts,
+  std::vector<ChartGrid>& grids, std::vector<Creases>& creases, const Progress& progress)
+{
+  const Layout& L = in.L;
+  samplePaths(in, sampled, selected(L.numEdges, {}), paths, progress.sub(0.0, 0.05));
+  sampleCharts(in, param, sampled, paths, selected(L.numCharts, {}), charts, grids, creases,
+    progress.sub(0.05, 0.6));
+  const bool byTarget = o.levelRule == LevelRule::Error && o.errorTarget > 0.0;
+  for (int32_t round = 0; byTarget && round < o.maxLevel; ++round)
+  {
+    const std::vector<uint8_t> raised =
+      raiseMeasured(charts, sampled, o, budgets.measured, o.errorTarget * diagonal);
+    std::vector<uint8_t> edge(L.numEdges, 0), chart(L.numCharts, 0);
+    for (int32_t e = 0; e < L.numEdges; ++e)
+    {
+      if (raised[L.edgeChart[2 * e]] || raised[L.edgeChart[2 * e + 1]])
+      {
+        edge[e] = chart[L.edgeChart[2 * e]] = chart[L.edgeChart[2 * e + 1]] = 1;
+      }
+    }
+    const std::vector<int32_t> charts2 = selected(L.numCharts, chart);
+    if (charts2.empty())
+    {
+      break;
+    }
+    // Rounds shrink fast (a chart rises only while above the target), so each gets half of
+    // what is left of the range.
+    const double a = 1.0 - 0.4 * std::pow(0.5, round), b = 1.0 - 0.4 * std::pow(0.5, round + 1);
+    samplePaths(in, sampled, selected(L.numEdges, edge), paths, progress.sub(a, a));
+    sampleCharts(in, param, sampled, paths, charts2, charts, grids, creases, progress.sub(a, b));
+  }
 }
 
 /// Step 6, sides: every path that follows no feature curve fitted, in parallel.
@@ -221,26 +284,27 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   parameterizePatches(patches, base, L, meanCurvature, options, atlas.inputDiagonal, param,
     weightedArea, progress.sub(0.02, 0.45));
 
-  // 2. The budget; the level every chart is sampled at (the area rule's d_max, raised for the
-  // error rule to the levels it measures); the chart table's neighbours.
-  const int64_t budget = sampleBudget(options, L.numCharts, atlas.inputPoints);
-  const std::vector<int32_t> sampled = sampledLevels(weightedArea, options, budget);
+  // 2. The budgets; the level every chart is sampled at first (the area rule's d_max, raised
+  // for the error rule to the levels it measures); the chart table's neighbours.
+  const SampleBudgets budgets = sampleBudgets(options, L.numCharts, atlas.inputPoints);
+  std::vector<int32_t> sampled = sampledLevels(weightedArea, options, budgets.area);
   atlas.charts = chartTable(patches, base, L);
 
-  // 3. Corners and paths: sampled once, in float, and copied into every chart that shares them.
+  // 3-4. Corners and paths, sampled once in float and copied into every chart that shares them;
+  // every chart's grid at its sampled level and its error at each level; the charts above the
+  // error target measured higher.
   const std::vector<uint8_t> featureVertex = featureVertices(patches, L, base.baseVertices.size());
   const SamplingInput in{ patches, base, L, S, extra, shared, featureVertex };
-  const std::vector<PathSamples> paths = samplePaths(in, sampled, progress.sub(0.45, 0.5));
-
-  // 4. Every chart's grid at its sampled level and its error at each level.
+  std::vector<PathSamples> paths;
   std::vector<ChartGrid> grids;
   std::vector<Creases> creases;
-  sampleCharts(in, param, sampled, paths, atlas.charts, grids, creases, progress.sub(0.5, 0.85));
+  sampleAndMeasure(in, param, options, budgets, atlas.inputDiagonal, sampled, paths, atlas.charts,
+    grids, creases, progress.sub(0.45, 0.85));
 
-  // 5. d_max of every chart under the budget; level d of a chart is its sampled grid at stride
-  // 2^(sampled - d), whatever d_max is chosen.
+  // 5. d_max of every chart under the budget and the target; level d of a chart is its sampled
+  // grid at stride 2^(sampled - d), whatever d_max is chosen.
   const std::vector<int32_t> level =
-    chartLevels(atlas.charts, sampled, patches.mesh, atlas.inputDiagonal, options, budget);
+    chartLevels(atlas.charts, sampled, patches.mesh, atlas.inputDiagonal, options, budgets);
 
   // 6. The fit of the sides, then of every chart's interior; boxes and rounded errors.
   if (options.fitSamples)

@@ -276,7 +276,16 @@ void checkOptions(const GeometryImageOptions& options)
   }
   if (options.sampleBudget < 0)
   {
-    throw InputError(kWhere + "sampleBudget must be >= 0 (0: as many samples as input points)");
+    throw InputError(kWhere +
+      "sampleBudget must be >= 0 (0: as many samples as the errorTarget needs, or with no "
+      "target as the input has points)");
+  }
+  if (!(options.errorTarget >= 0.0 && options.errorTarget < 1.0))
+  {
+    throw InputError(kWhere +
+      "errorTarget must be a fraction of the diagonal in [0, 1) (0: the "
+      "budget alone), not " +
+      std::to_string(options.errorTarget));
   }
 }
 

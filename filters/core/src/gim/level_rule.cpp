@@ -9,21 +9,22 @@
 
 namespace tc::detail::geometry_images
 {
-int64_t sampleBudget(const GeometryImageOptions& options, int32_t numCharts, int64_t inputPoints)
+SampleBudgets sampleBudgets(
+  const GeometryImageOptions& options, int32_t numCharts, int64_t inputPoints)
 {
   const int64_t minimum = numCharts * gridVertexCount(options.minLevel);
-  int64_t budget = options.sampleBudget;
-  if (budget == 0)
+  if (options.sampleBudget > 0 && options.sampleBudget < minimum)
   {
-    budget = std::max(minimum, inputPoints);
+    throw InputError(kWhere + "sampleBudget " + num(options.sampleBudget) + " is below " +
+      num(minimum) + ", what " + num(numCharts) + " charts need at minLevel " +
+      num(options.minLevel) + "; raise sampleBudget or lower minLevel");
   }
-  else if (budget < minimum)
-  {
-    throw InputError(kWhere + "sampleBudget " + num(budget) + " is below " + num(minimum) +
-      ", what " + num(numCharts) + " charts need at minLevel " + num(options.minLevel) +
-      "; raise sampleBudget or lower minLevel");
-  }
-  return budget;
+  SampleBudgets b;
+  b.area = options.sampleBudget > 0 ? options.sampleBudget : std::max(minimum, inputPoints);
+  b.measured = b.area << (2 * kErrorRuleLevelsAbove);
+  const bool byTarget = options.levelRule == LevelRule::Error && options.errorTarget > 0.0;
+  b.finest = options.sampleBudget > 0 ? options.sampleBudget : byTarget ? b.measured : b.area;
+  return b;
 }
 
 std::vector<int32_t> areaRuleLevels(
@@ -80,7 +81,9 @@ std::vector<int32_t> sampledLevels(
   const std::vector<double>& weightedArea, const GeometryImageOptions& o, int64_t budget)
 {
   std::vector<int32_t> sampled = areaRuleLevels(weightedArea, o, budget);
-  if (o.levelRule == LevelRule::Error)
+  // With a target the measuring starts at the area rule's levels and rises where the error
+  // is (raiseMeasured), so the measured budget is not spent on charts already below it.
+  if (o.levelRule == LevelRule::Error && !(o.errorTarget > 0.0))
   {
     for (int32_t& d : sampled)
     {
@@ -99,7 +102,7 @@ std::vector<int32_t> sampledLevels(
 // fitted: the largest error ends no higher than with the area rule (a feasible allocation below
 // the caps).
 std::vector<int32_t> allocateByError(const std::vector<std::vector<double>>& levelError,
-  const GeometryImageOptions& o, int64_t budget, double tolerance)
+  const GeometryImageOptions& o, int64_t budget, double tolerance, double target)
 {
   const int32_t n = static_cast<int32_t>(levelError.size());
   std::vector<int32_t> level(n, o.minLevel);
@@ -119,6 +122,10 @@ std::vector<int32_t> allocateByError(const std::vector<std::vector<double>>& lev
   while (!heap.empty())
   {
     const double largest = heap.front().first;
+    if (target > 0.0 && largest <= target)
+    {
+      break;
+    }
     group.clear();
     int64_t cost = 0;
     while (!heap.empty() && heap.front().first >= largest - tolerance)
@@ -148,9 +155,39 @@ std::vector<int32_t> allocateByError(const std::vector<std::vector<double>>& lev
   return level;
 }
 
+std::vector<uint8_t> raiseMeasured(const std::vector<AtlasChart>& charts,
+  std::vector<int32_t>& sampled, const GeometryImageOptions& o, int64_t measured, double target)
+{
+  const int32_t n = static_cast<int32_t>(charts.size());
+  int64_t total = 0;
+  std::vector<std::pair<double, int32_t>> above;
+  for (int32_t c = 0; c < n; ++c)
+  {
+    total += gridVertexCount(sampled[c]);
+    const double e = charts[c].levelError[static_cast<size_t>(sampled[c])];
+    if (e > target && sampled[c] < o.maxLevel)
+    {
+      above.emplace_back(-e, c);
+    }
+  }
+  std::sort(above.begin(), above.end());
+  std::vector<uint8_t> raised(n, 0);
+  for (const auto& [minusError, c] : above)
+  {
+    const int64_t cost = gridVertexCount(sampled[c] + 1) - gridVertexCount(sampled[c]);
+    if (total + cost <= measured)
+    {
+      total += cost;
+      ++sampled[c];
+      raised[c] = 1;
+    }
+  }
+  return raised;
+}
+
 std::vector<int32_t> chartLevels(const std::vector<AtlasChart>& charts,
   const std::vector<int32_t>& sampled, const TriMesh& mesh, double diagonal,
-  const GeometryImageOptions& o, int64_t budget)
+  const GeometryImageOptions& o, const SampleBudgets& budgets)
 {
   if (o.levelRule != LevelRule::Error)
   {
@@ -168,6 +205,7 @@ std::vector<int32_t> chartLevels(const std::vector<AtlasChart>& charts,
   {
     extent = std::max(extent, std::abs(x));
   }
-  return allocateByError(errors, o, budget, 1e-6 * (diagonal + extent));
+  return allocateByError(
+    errors, o, budgets.finest, 1e-6 * (diagonal + extent), o.errorTarget * diagonal);
 }
 } // namespace tc::detail::geometry_images

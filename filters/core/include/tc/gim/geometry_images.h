@@ -28,6 +28,14 @@
 ///   depend on the thread count. Levels are point samples of the finest grid, so the grids
 ///   sampled at the cap hold every lower level bit for bit: nothing is sampled twice and the atlas
 ///   equals one sampled directly at the chosen d_max (then fitted).
+/// - With an errorTarget, the error rule stops on the error instead of the budget: charts are
+///   sampled first at the area rule's d_max, and every chart whose levelError there is above
+///   errorTarget * diagonal is sampled again one level finer (with its paths, and the charts
+///   across them, which copy their sides), round after round, until none is above the target
+///   below maxLevel or the grids would hold more than 4^kErrorRuleLevelsAbove times the area
+///   rule's budget (largest errors first). The charts then rise as above, each only while its
+///   error is above the target (and the rise fits sampleBudget when one is given): every chart
+///   ends at the first level below the target, or at its cap.
 /// - Interior grid samples: the grid point is located in the parameterized patch and position,
 ///   normal (renormalized) and every extra attribute are interpolated barycentrically.
 /// - Side samples are never located in 2-D: each path is sampled once, by arc length, from its
@@ -91,9 +99,15 @@ constexpr int32_t kErrorRuleLevelsAbove = 2;
 
 struct GeometryImageOptions
 {
+  /// The error rule's goal, as a fraction of the input's bounding-box diagonal: a chart rises
+  /// while its levelError at its current level is above errorTarget * diagonal (and it is
+  /// below maxLevel and the budget allows), and no further. 0: no goal, the budget alone.
+  double errorTarget = 0.0;
   /// Total samples over all charts at their finest level, (2^d + 1)(2^d + 2) / 2 per chart.
-  /// 0: as many as the input has points. A budget below #charts samples at minLevel is an
-  /// error; with 0 the charts simply stay at minLevel then.
+  /// 0: with an errorTarget, as many as the target needs (up to what the measuring may hold,
+  /// 4^kErrorRuleLevelsAbove times the input's points); without one, as many as the input has
+  /// points. A budget below #charts samples at minLevel is an error; with 0 the charts simply
+  /// stay at minLevel then.
   int64_t sampleBudget = 0;
   int32_t minLevel = 2; ///< smallest d_max of a chart (0 .. maxLevel)
   int32_t maxLevel = 8; ///< largest d_max of a chart (at most 12: 4097 samples per side)
