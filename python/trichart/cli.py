@@ -351,6 +351,10 @@ def _check_args(parser, args, d):
         if not low <= args.crease_angle <= high:
             parser.error(f"--crease-angle must be {low:g} .. {high:g} degrees, not "
                          f"{args.crease_angle}")
+        low, high = images.GetErrorTargetMinValue(), images.GetErrorTargetMaxValue()
+        if not low <= args.error_target <= high:
+            parser.error(f"--error-target must be {low:g} .. {high:g} (a fraction of the "
+                         f"diagonal), not {args.error_target}")
         low, high = base.GetMaxErrorMinValue(), base.GetMaxErrorMaxValue()
         if not low <= args.max_error <= high:
             parser.error(f"--max-error must be {low:g} .. {high:g}, not {args.max_error}")

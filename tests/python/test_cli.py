@@ -108,11 +108,35 @@ def test_build_options_reach_the_stages(testing_data, tmp_path):
                "-q").returncode == 0
     assert plain.read_bytes() != default.read_bytes()
     for option, value in (("--stretch-iterations", "101"), ("--crease-angle", "-1"),
-                          ("--max-error", "2")):
+                          ("--max-error", "2"), ("--error-target", "0.7")):
         r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o",
                 tmp_path / "bad.exr", option, value)
         assert r.returncode == 2 and option in r.stderr, r.stderr
         assert not (tmp_path / "bad.exr").exists()
+
+
+def _finest_hausdorff(mesh, atlas):
+    """Hausdorff / diagonal (%) of the finest row that `trichart eval` prints."""
+    r = run("eval", mesh, atlas)
+    assert r.returncode == 0, r.stderr
+    rows = [line.split() for line in r.stdout.splitlines() if line.split()[:1] != []
+            and line.split()[0].isdigit()]
+    return float(rows[-1][5].rstrip("%"))
+
+
+def test_build_error_target_brings_the_finest_level_closer(testing_data, tmp_path):
+    # The default spends the input's point count; a target of 0.2% of the diagonal raises the
+    # charts above it, which on this coarse bunny brings the finest Hausdorff down severalfold.
+    mesh = testing_data / "meshes" / "bunny_npm.off"
+    figures = {}
+    for target in ("0", "0.002"):
+        atlas = tmp_path / f"t{target}.exr"
+        r = run("build", mesh, "-o", atlas, "-q", "--error-target", target)
+        assert r.returncode == 0, r.stderr
+        figures[target] = _finest_hausdorff(mesh, atlas)
+    print("bunny_npm finest Hausdorff / diagonal (%): default", figures["0"], "target 0.2%",
+          figures["0.002"])
+    assert figures["0.002"] < 0.5 * figures["0"]
 
 
 def test_prepare_reports_and_splits(tmp_path):
