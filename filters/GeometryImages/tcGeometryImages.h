@@ -49,7 +49,7 @@ public:
 
   ///@{
   /// Total samples over all charts at their finest level; 0: as many as the ErrorTarget needs
-  /// (up to 16 times the input's points), or with no target the input's point count.
+  /// (up to 16 times the input's points, or 2^20 samples if more), or with no target the input's point count.
   vtkSetClampMacro(SampleBudget, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(SampleBudget, vtkIdType);
   ///@}

@@ -48,9 +48,11 @@ void tcResources::GetMeshFileCounts(const char* fileName, vtkTypeInt64 counts[2]
 }
 
 vtkTypeInt64 tcResources::EstimateBuildMemory(vtkTypeInt64 points, vtkTypeInt64 triangles,
-  vtkTypeInt64 sampleBudget, int maxLevel, vtkTypeInt64 targetFaces, vtkTypeInt64 nystromThreshold)
+  vtkTypeInt64 sampleBudget, int maxLevel, vtkTypeInt64 targetFaces, vtkTypeInt64 nystromThreshold,
+  double errorTarget)
 {
   tc::BuildMemoryRequest request;
+  request.errorTarget = errorTarget;
   request.points = points;
   request.triangles = triangles;
   request.sampleBudget = sampleBudget;

@@ -129,6 +129,7 @@ def _stage_defaults():
     """The options of the estimate that the filters default (one home for each)."""
     images = TriChartGeometryImages.tcGeometryImages()
     return {"max_level": images.GetMaxLevel(), "sample_budget": images.GetSampleBudget(),
+            "error_target": images.GetErrorTarget(),
             "target_faces": TriChartBaseComplex.tcBaseComplex().GetTargetFaces(),
             "nystrom_threshold": TriChartFeatures.tcSpectralClustering().GetNystromThreshold()}
 
@@ -142,7 +143,8 @@ def estimate_memory(points, triangles, geometry_options=None, base_options=None,
         options.update({k: v for k, v in (given or {}).items() if k in options})
     estimate = TriChartIO.tcResources.EstimateBuildMemory(
         int(points), int(triangles), int(options["sample_budget"]), int(options["max_level"]),
-        int(options["target_faces"]), int(options["nystrom_threshold"]))
+        int(options["target_faces"]), int(options["nystrom_threshold"]),
+        float(options["error_target"]))
     if estimate < 0:
         raise TriChartError(f"memory: no estimate for a budget of {options['sample_budget']} "
                             f"samples up to level {options['max_level']}: the budget must not "

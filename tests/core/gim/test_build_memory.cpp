@@ -2,6 +2,7 @@
 #include "tc/common/errors.h"
 #include "tc/gim/atlas.h"
 #include "tc/gim/build_memory.h"
+#include "tc/gim/geometry_images.h"
 
 #include <gtest/gtest.h>
 
@@ -81,6 +82,12 @@ TEST(BuildMemory, TheLargestLevelCapsTheSamplesOfAHugeBudget)
   // Below the cap, the error rule measures up to two levels above the area rule: 16 x budget.
   EXPECT_EQ(tc::estimateBuildMemory(request(1839, 3674, 1000, 8)).samples, 16000);
   EXPECT_EQ(tc::estimateBuildMemory(request(1839, 3674, 0, 8)).samples, 16 * 1839);
+  // With an error target, at least kMinTargetSamples; 16 x budget when that is more.
+  tc::BuildMemoryRequest target = request(1839, 3674, 0, 8);
+  target.errorTarget = 1e-3;
+  EXPECT_EQ(tc::estimateBuildMemory(target).samples, tc::kMinTargetSamples);
+  target.sampleBudget = 100000;
+  EXPECT_EQ(tc::estimateBuildMemory(target).samples, 16 * 100000);
 }
 
 TEST(BuildMemory, TheExactGraphCostsMoreThanNystromPerTriangle)

@@ -54,7 +54,11 @@ BuildMemoryEstimate estimateBuildMemory(const BuildMemoryRequest& r)
   e.charts =
     std::max<int64_t>(std::max<int64_t>(r.targetFaces, 1), r.triangles / kTrianglesPerChart);
   const double budget = static_cast<double>(r.sampleBudget > 0 ? r.sampleBudget : r.points);
-  const double measured = budget * static_cast<double>(int64_t(1) << (2 * kErrorRuleLevelsAbove));
+  double measured = budget * static_cast<double>(int64_t(1) << (2 * kErrorRuleLevelsAbove));
+  if (r.errorTarget > 0.0)
+  {
+    measured = std::max(measured, static_cast<double>(kMinTargetSamples));
+  }
   const double capped =
     static_cast<double>(e.charts) * static_cast<double>(gridVertexCount(r.maxLevel));
   const double samples = std::min(measured, capped);

@@ -160,9 +160,34 @@ void samplePaths(const SamplingInput& in, const std::vector<int32_t>& sampled,
     progress, blockSteps(n));
 }
 
+/// Steps 3 and 4 again for the charts in `raised` (their sampled level raised), their paths,
+/// and the charts across those paths (whose sides are copied from them); false when none.
+bool resampleRaised(const SamplingInput& in, const std::vector<PatchParameterization>& param,
+  const std::vector<uint8_t>& raised, const std::vector<int32_t>& sampled,
+  std::vector<PathSamples>& paths, std::vector<AtlasChart>& charts, std::vector<ChartGrid>& grids,
+  std::vector<Creases>& creases, const Progress& progress)
+{
+  const Layout& L = in.L;
+  std::vector<uint8_t> edge(L.numEdges, 0), chart(L.numCharts, 0);
+  for (int32_t e = 0; e < L.numEdges; ++e)
+  {
+    if (raised[L.edgeChart[2 * e]] || raised[L.edgeChart[2 * e + 1]])
+    {
+      edge[e] = chart[L.edgeChart[2 * e]] = chart[L.edgeChart[2 * e + 1]] = 1;
+    }
+  }
+  const std::vector<int32_t> which = selected(L.numCharts, chart);
+  if (which.empty())
+  {
+    return false;
+  }
+  samplePaths(in, sampled, selected(L.numEdges, edge), paths, progress.sub(0.0, 0.0));
+  sampleCharts(in, param, sampled, paths, which, charts, grids, creases, progress);
+  return true;
+}
+
 /// Steps 3 and 4 for every chart, then, while an errorTarget is set, again for the charts whose
-/// error at their sampled level is above it (raised one level, within the measured budget), for
-/// their paths, and for the charts across those paths (whose sides are copied from them).
+/// error at their sampled level is above it (raised one level, within the measured budget).
 void sampleAndMeasure(const SamplingInput& in, const std::vector<PatchParameterization>& param,
   const GeometryImageOptions& o, const SampleBudgets& budgets, double diagonal,
   std::vector<int32_t>& sampled, std::vector<PathSamples>& paths, std::vector<AtlasChart>& charts,
@@ -172,29 +197,22 @@ void sampleAndMeasure(const SamplingInput& in, const std::vector<PatchParameteri
   samplePaths(in, sampled, selected(L.numEdges, {}), paths, progress.sub(0.0, 0.05));
   sampleCharts(in, param, sampled, paths, selected(L.numCharts, {}), charts, grids, creases,
     progress.sub(0.05, 0.6));
-  const bool byTarget = o.levelRule == LevelRule::Error && o.errorTarget > 0.0;
-  for (int32_t round = 0; byTarget && round < o.maxLevel; ++round)
+  if (o.levelRule != LevelRule::Error || !(o.errorTarget > 0.0))
+  {
+    return;
+  }
+  // Rounds shrink fast (a chart rises only while above the target), so each gets half of what
+  // is left of the range.
+  for (int32_t round = 0; round < o.maxLevel; ++round)
   {
     const std::vector<uint8_t> raised =
       raiseMeasured(charts, sampled, o, budgets.measured, o.errorTarget * diagonal);
-    std::vector<uint8_t> edge(L.numEdges, 0), chart(L.numCharts, 0);
-    for (int32_t e = 0; e < L.numEdges; ++e)
-    {
-      if (raised[L.edgeChart[2 * e]] || raised[L.edgeChart[2 * e + 1]])
-      {
-        edge[e] = chart[L.edgeChart[2 * e]] = chart[L.edgeChart[2 * e + 1]] = 1;
-      }
-    }
-    const std::vector<int32_t> charts2 = selected(L.numCharts, chart);
-    if (charts2.empty())
+    const double a = 1.0 - 0.4 * std::pow(0.5, round), b = 1.0 - 0.4 * std::pow(0.5, round + 1);
+    if (!resampleRaised(
+          in, param, raised, sampled, paths, charts, grids, creases, progress.sub(a, b)))
     {
       break;
     }
-    // Rounds shrink fast (a chart rises only while above the target), so each gets half of
-    // what is left of the range.
-    const double a = 1.0 - 0.4 * std::pow(0.5, round), b = 1.0 - 0.4 * std::pow(0.5, round + 1);
-    samplePaths(in, sampled, selected(L.numEdges, edge), paths, progress.sub(a, a));
-    sampleCharts(in, param, sampled, paths, charts2, charts, grids, creases, progress.sub(a, b));
   }
 }
 

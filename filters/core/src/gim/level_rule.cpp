@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <utility>
 
 namespace tc::detail::geometry_images
@@ -23,6 +24,10 @@ SampleBudgets sampleBudgets(
   b.area = options.sampleBudget > 0 ? options.sampleBudget : std::max(minimum, inputPoints);
   b.measured = b.area << (2 * kErrorRuleLevelsAbove);
   const bool byTarget = options.levelRule == LevelRule::Error && options.errorTarget > 0.0;
+  if (byTarget)
+  {
+    b.measured = std::max(b.measured, kMinTargetSamples);
+  }
   b.finest = options.sampleBudget > 0 ? options.sampleBudget : byTarget ? b.measured : b.area;
   return b;
 }
@@ -164,7 +169,9 @@ std::vector<uint8_t> raiseMeasured(const std::vector<AtlasChart>& charts,
   for (int32_t c = 0; c < n; ++c)
   {
     total += gridVertexCount(sampled[c]);
-    const double e = charts[c].levelError[static_cast<size_t>(sampled[c])];
+    const std::vector<double>& error = charts[c].levelError;
+    const size_t d = static_cast<size_t>(sampled[c]);
+    const double e = error[d];
     if (e > target && sampled[c] < o.maxLevel)
     {
       above.emplace_back(-e, c);

@@ -15,9 +15,11 @@ namespace tc::detail::geometry_images
 /// The sample counts of the level rules (see GeometryImageOptions::sampleBudget).
 struct SampleBudgets
 {
-  int64_t area = 0;     ///< the area rule's: sampleBudget, or 0 -> the input's points
-  int64_t measured = 0; ///< what the error rule's grids may hold: 4^kErrorRuleLevelsAbove x area
-  int64_t finest = 0;   ///< the finest levels' total: sampleBudget, or 0 -> area or measured
+  int64_t area = 0; ///< the area rule's: sampleBudget, or 0 -> the input's points
+  /// what the error rule's grids may hold: 4^kErrorRuleLevelsAbove x area, and with an
+  /// errorTarget at least kMinTargetSamples
+  int64_t measured = 0;
+  int64_t finest = 0; ///< the finest levels' total: sampleBudget, or 0 -> area or measured
 };
 
 /// The budgets of `options` for numCharts charts and inputPoints points (each at least what

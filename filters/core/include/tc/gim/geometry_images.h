@@ -32,8 +32,8 @@
 ///   sampled first at the area rule's d_max, and every chart whose levelError there is above
 ///   errorTarget * diagonal is sampled again one level finer (with its paths, and the charts
 ///   across them, which copy their sides), round after round, until none is above the target
-///   below maxLevel or the grids would hold more than 4^kErrorRuleLevelsAbove times the area
-///   rule's budget (largest errors first). The charts then rise as above, each only while its
+///   below maxLevel or the grids would hold more than max(4^kErrorRuleLevelsAbove times the area
+///   rule's budget, kMinTargetSamples) (largest errors first). The charts then rise as above, each only while its
 ///   error is above the target (and the rise fits sampleBudget when one is given): every chart
 ///   ends at the first level below the target, or at its cap.
 /// - Interior grid samples: the grid point is located in the parameterized patch and position,
@@ -97,6 +97,12 @@ enum class LevelRule : int32_t
 /// Levels above the area rule's d_max up to which the error rule measures a chart.
 constexpr int32_t kErrorRuleLevelsAbove = 2;
 
+/// With an errorTarget the error rule may measure at least this many samples whatever the
+/// budget (about 36 MB): a coarse mesh needs tens of grid samples per input point for a grid to
+/// follow its facets within a small target, which 4^kErrorRuleLevelsAbove times its points
+/// would not allow.
+constexpr int64_t kMinTargetSamples = int64_t(1) << 20;
+
 struct GeometryImageOptions
 {
   /// The error rule's goal, as a fraction of the input's bounding-box diagonal: a chart rises
@@ -105,7 +111,7 @@ struct GeometryImageOptions
   double errorTarget = 0.0;
   /// Total samples over all charts at their finest level, (2^d + 1)(2^d + 2) / 2 per chart.
   /// 0: with an errorTarget, as many as the target needs (up to what the measuring may hold,
-  /// 4^kErrorRuleLevelsAbove times the input's points); without one, as many as the input has
+  /// 4^kErrorRuleLevelsAbove times the input's points or kMinTargetSamples); without one, as many as the input has
   /// points. A budget below #charts samples at minLevel is an error; with 0 the charts simply
   /// stay at minLevel then.
   int64_t sampleBudget = 0;

@@ -93,11 +93,11 @@ struct LodView
 
 struct LodOptions
 {
-  double bias = 0.0;        ///< levels added to the chosen level (positive: finer)
+  double bias = 0.0; ///< levels added to the chosen level (positive: finer)
   /// > 0: screen-space error mode, the coarsest level within this many pixels (the default, 1,
   /// is a faithful picture for a user who changes nothing); 0: the paper's area rule (eq. 7)
   double errorPixels = 1.0;
-  bool cull = true;         ///< charts whose box lies wholly outside the view frustum get level -1
+  bool cull = true; ///< charts whose box lies wholly outside the view frustum get level -1
 };
 
 /// Levels of every chart for one instance: levels[c] in [0, maxLevel[c]], or -1 when culled.

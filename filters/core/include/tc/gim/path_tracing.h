@@ -12,9 +12,9 @@
 /// that cross. The result does not depend on the thread count.
 #pragma once
 
-#include "tc/gim/base_complex.h"
 #include "tc/common/mesh.h"
 #include "tc/common/progress.h"
+#include "tc/gim/base_complex.h"
 
 #include <cstdint>
 #include <vector>
