@@ -90,6 +90,7 @@ int tcFeatureRefinement::RequestData(
   options.junctionCorners = this->JunctionCorners;
   options.straightenLines = this->StraightenLines;
   options.creaseAngle = this->CreaseAngle;
+  options.creaseLineAngle = this->CreaseLineAngle;
   options.cornerRings = this->CornerRings;
   options.cornerFraction = this->CornerFraction;
   tc::FeatureRefinementResult result;
@@ -138,6 +139,7 @@ void tcFeatureRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "JunctionCorners: " << this->JunctionCorners << "\n";
   os << indent << "StraightenLines: " << this->StraightenLines << "\n";
   os << indent << "CreaseAngle: " << this->CreaseAngle << "\n";
+  os << indent << "CreaseLineAngle: " << this->CreaseLineAngle << "\n";
   os << indent << "CornerRings: " << this->CornerRings << "\n";
   os << indent << "CornerFraction: " << this->CornerFraction << "\n";
 }

@@ -97,6 +97,15 @@ public:
   ///@}
 
   ///@{
+  /// Crease chains join the feature lines: chains of two or more edges whose faces meet at this
+  /// dihedral angle (degrees) or more, where no cluster boundary runs. 0 (the default): only
+  /// the cluster boundaries, as in the paper. A CAD part has more creases than the clusters
+  /// have boundaries, and a chart follows a crease exactly only along its sides.
+  vtkSetClampMacro(CreaseLineAngle, double, 0.0, 180.0);
+  vtkGetMacro(CreaseLineAngle, double);
+  ///@}
+
+  ///@{
   /// Vertices where three or more feature lines meet are corners too.
   vtkSetMacro(JunctionCorners, bool);
   vtkGetMacro(JunctionCorners, bool);
@@ -135,6 +144,7 @@ private:
   bool JunctionCorners = tc::FeatureRefinementOptions{}.junctionCorners;
   bool StraightenLines = tc::FeatureRefinementOptions{}.straightenLines;
   double CreaseAngle = tc::FeatureRefinementOptions{}.creaseAngle;
+  double CreaseLineAngle = tc::FeatureRefinementOptions{}.creaseLineAngle;
   int CornerRings = tc::FeatureRefinementOptions{}.cornerRings;
   double CornerFraction = tc::FeatureRefinementOptions{}.cornerFraction;
 };

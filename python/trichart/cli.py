@@ -90,7 +90,8 @@ def _build_options(args):
     """pipeline.build's keyword options from the command line of `trichart build`."""
     return {"stages": args.stages, "image": not args.no_image,
             "cluster_options": {"number_of_clusters": args.clusters},
-            "feature_options": {"crease_angle": args.crease_angle},
+            "feature_options": {"crease_angle": args.crease_angle,
+                                "crease_line_angle": args.crease_lines},
             "base_options": {"target_faces": args.base_faces, "max_error": args.max_error},
             "geometry_options": {"max_level": args.max_level, "sample_budget": args.budget,
                                  "error_target": args.error_target,
@@ -268,6 +269,10 @@ def _add_build_parser(sub, d):
                    help=f"dihedral angle in degrees of a crease, which straightened feature "
                         f"lines keep (default {d.features.GetCreaseAngle():g}; organic meshes "
                         f"simplify further with 60)")
+    p.add_argument("--crease-lines", type=float, metavar="DEG",
+                   default=d.features.GetCreaseLineAngle(),
+                   help="chains of edges whose faces meet at DEG degrees or more also become "
+                        "feature lines (default 0: only the cluster boundaries; CAD parts: 40)")
     p.add_argument("--base-faces", type=int, default=d.base.GetTargetFaces(),
                    help=f"target number of base-complex triangles (default "
                         f"{d.base.GetTargetFaces()})")
@@ -347,6 +352,10 @@ def _check_args(parser, args, d):
         if not low <= args.stretch_iterations <= high:
             parser.error(f"--stretch-iterations must be {low} .. {high}, not "
                          f"{args.stretch_iterations}")
+        low, high = features.GetCreaseLineAngleMinValue(), features.GetCreaseLineAngleMaxValue()
+        if not low <= args.crease_lines <= high:
+            parser.error(f"--crease-lines must be {low:g} .. {high:g} degrees, not "
+                         f"{args.crease_lines}")
         low, high = features.GetCreaseAngleMinValue(), features.GetCreaseAngleMaxValue()
         if not low <= args.crease_angle <= high:
             parser.error(f"--crease-angle must be {low:g} .. {high:g} degrees, not "

@@ -272,7 +272,9 @@ def refine_features(clusters, progress=None, **options):
     Options: band_fraction, crest_beta, curvature_top_fraction, curvature_threshold_scale,
     corner_rings, corner_fraction, band_rings, cut_passes, dihedral_weight, junction_corners,
     straighten_lines (straighten one-face zig-zags of the boundaries, default True),
-    crease_angle (degrees; straightening never trades a crease edge for a smoother one).
+    crease_angle (degrees; straightening never trades a crease edge for a smoother one),
+    crease_line_angle (degrees; chains of edges this sharp join the feature lines; 0, the
+    default: only the cluster boundaries).
     """
     f = _run_on(TriChartFeatures.tcFeatureRefinement(), clusters, "features", progress, options)
     return _output(f, 0), _output(f, 1), _output(f, 2)

@@ -108,7 +108,8 @@ def test_build_options_reach_the_stages(testing_data, tmp_path):
                "-q").returncode == 0
     assert plain.read_bytes() != default.read_bytes()
     for option, value in (("--stretch-iterations", "101"), ("--crease-angle", "-1"),
-                          ("--max-error", "2"), ("--error-target", "0.7")):
+                          ("--max-error", "2"), ("--error-target", "0.7"),
+                          ("--crease-lines", "-5")):
         r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o",
                 tmp_path / "bad.exr", option, value)
         assert r.returncode == 2 and option in r.stderr, r.stderr

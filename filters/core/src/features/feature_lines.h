@@ -34,6 +34,16 @@ Polylines boundarySegments(
 /// @param[in] meanCurvature  #V mean curvature H
 void keepFeatureSegments(const TriMesh& mesh, const Polylines& segments,
   const std::vector<double>& meanCurvature, FeatureRefinementResult& result);
+
+/// The length-weighted mean |H| of the path lines.nodes[begin, end) (each edge: its length times
+/// the mean |H| of its ends); 0 for a path without length.
+double meanCurvatureAlong(const TriMesh& mesh, const Polylines& lines, int64_t begin, int64_t end,
+  const std::vector<double>& meanCurvature);
+
+/// Appends the path lines.nodes[begin, end) to result's lines, with its meanCurvatureAlong, and
+/// marks its vertices in result.featureVertex.
+void appendLine(const TriMesh& mesh, const Polylines& lines, int64_t begin, int64_t end,
+  const std::vector<double>& meanCurvature, FeatureRefinementResult& result);
 } // namespace refinement
 } // namespace detail
 } // namespace tc

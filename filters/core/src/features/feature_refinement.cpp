@@ -4,6 +4,7 @@
 #include "detail/geometry2d.h"
 #include "features/boundary_straightening.h"
 #include "features/corners.h"
+#include "features/crease_lines.h"
 #include "features/face_adjacency.h"
 #include "features/face_geometry.h"
 #include "features/feature_lines.h"
@@ -116,15 +117,12 @@ std::vector<int32_t> compactLabels(const std::vector<int32_t>& clusterId, std::v
 // cutPasses), later passes inside the first band; then the straightening.
 void refineBoundaries(const TriMesh& mesh, const EdgeTable& edges,
   const std::vector<double>& faceMeanCurvature, const std::vector<uint8_t>& crestVertex,
-  const FeatureRefinementOptions& options, const ClusterPairs& pairs, std::vector<int32_t>& label,
-  FeatureRefinementResult& result, const Progress& progress)
+  const std::vector<double>& dihedral, const FeatureRefinementOptions& options,
+  const ClusterPairs& pairs, std::vector<int32_t>& label, FeatureRefinementResult& result,
+  const Progress& progress)
 {
   const detail::FaceAdjacency dual = detail::buildFaceAdjacency(edges, mesh.numTriangles());
   const std::vector<double> centroids = detail::faceCentroids(mesh);
-  // Edge dihedral angles, for eq. 4's crease factor and for straightening.
-  const std::vector<double> dihedral = options.dihedralWeight > 0.0 || options.straightenLines
-    ? detail::edgeDihedrals(mesh, edges)
-    : std::vector<double>();
   const std::vector<double> capacity = dualCapacity(
     mesh, edges, dual, faceMeanCurvature, crestVertex, dihedral, options, progress.sub(0.05, 0.1));
   const int passes = std::max(1, options.cutPasses);
@@ -236,12 +234,17 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   std::vector<int32_t> ids;
   std::vector<int32_t> label = compactLabels(clusterId, ids);
   const ClusterPairs pairs{ static_cast<int64_t>(ids.size()) };
+  // Edge dihedral angles: eq. 4's crease factor, the straightening and the crease chains.
+  const std::vector<double> dihedral =
+    options.dihedralWeight > 0.0 || options.straightenLines || options.creaseLineAngle > 0.0
+    ? detail::edgeDihedrals(mesh, edges)
+    : std::vector<double>();
   progress.report(0.05);
 
   // 2. The cuts in the band, then the straightening.
   const std::vector<int32_t> inputLabel = label;
   refineBoundaries(
-    mesh, edges, faceMeanCurvature, crestVertex, options, pairs, label, result, progress);
+    mesh, edges, faceMeanCurvature, crestVertex, dihedral, options, pairs, label, result, progress);
   for (int64_t f = 0; f < nf; ++f)
   {
     result.relabeledFaces += label[f] != inputLabel[f] ? 1 : 0;
@@ -257,6 +260,7 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   const detail::Polylines segments = boundarySegments(edges, boundaryEdges(edges, label), nv);
   result.candidateSegments = static_cast<int64_t>(segments.offsets.size()) - 1;
   keepFeatureSegments(mesh, segments, meanCurvature, result);
+  addCreaseLines(mesh, edges, dihedral, meanCurvature, options, result);
   progress.report(0.75);
 
   // 5. Corners.

@@ -85,6 +85,16 @@ struct FeatureRefinementOptions
   bool straightenLines = true;
   /// Dihedral angle in degrees from which an edge counts as a crease for straightenLines.
   double creaseAngle = 30.0;
+  /// Crease chains join the feature lines: chains of edges whose dihedral angle reaches this
+  /// many degrees and that no kept cluster-boundary segment holds, broken where they meet a
+  /// line (step 4b of refineFeatures); 0 (the default) keeps only the paper's cluster-boundary
+  /// lines. A part has more creases than a fixed number of spectral clusters has boundaries,
+  /// and a crease edge is where the normal turns, which a chart grid follows only on its sides
+  /// (inside a chart its error halves per level instead of quartering).
+  double creaseLineAngle = 0.0;
+  /// A crease chain is kept when it has at least this many edges: a lone sharp edge is more
+  /// often a badly shaped triangle than a crease.
+  int creaseLineEdges = 2;
 };
 
 struct FeatureRefinementResult
@@ -129,6 +139,7 @@ struct FeatureRefinementResult
 ///    where its length-weighted mean |H| (each edge: length x mean |H| of its ends) reaches
 ///    curvatureThreshold = max(curvatureThresholdScale x mean of the top curvatureTopFraction
 ///    of |H| over the vertices that triangles use, minCurvatureTimesSize / bbox diagonal).
+/// 4b. Crease chains (creaseLineAngle, creaseLineEdges) are appended to the lines.
 /// 4. Corners: vertices whose |H| is the largest within cornerRings rings (ties go to the
 ///    smaller id), the top ceil(cornerFraction x count) of them by |H| that reach
 ///    curvatureThreshold; with junctionCorners also every vertex where 3 or more feature-line

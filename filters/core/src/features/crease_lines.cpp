@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "features/crease_lines.h"
+
+#include "detail/geometry2d.h"
+#include "features/feature_lines.h"
+#include "features/polyline_chains.h"
+
+#include <algorithm>
+#include <unordered_set>
+
+namespace tc
+{
+namespace detail
+{
+namespace refinement
+{
+namespace
+{
+uint64_t pairKey(int64_t a, int64_t b)
+{
+  return (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint64_t>(std::max(a, b));
+}
+
+// The crease edges that no kept line holds, as segment node pairs in edge-table order.
+std::vector<int64_t> freeCreaseSegments(const EdgeTable& edges, const std::vector<double>& dihedral,
+  double angle, const FeatureRefinementResult& result)
+{
+  std::unordered_set<uint64_t> onLine;
+  for (int64_t l = 0; l < result.numLines(); ++l)
+  {
+    for (int64_t i = result.lineOffsets[l]; i + 1 < result.lineOffsets[l + 1]; ++i)
+    {
+      onLine.insert(pairKey(result.lineVertices[i], result.lineVertices[i + 1]));
+    }
+  }
+  std::vector<int64_t> segments;
+  for (int64_t e = 0; e < edges.numEdges(); ++e)
+  {
+    const int64_t a = edges.vertices[2 * e], b = edges.vertices[2 * e + 1];
+    if (edges.valence(e) == 2 && dihedral[e] >= angle && !onLine.count(pairKey(a, b)))
+    {
+      segments.push_back(a);
+      segments.push_back(b);
+    }
+  }
+  return segments;
+}
+
+// The chains cut at every inner node that `stop` marks; a closed chain through such a node is
+// first turned to start there, so that it becomes an open path from and to it.
+Polylines splitAt(const Polylines& chains, const std::vector<uint8_t>& stop)
+{
+  Polylines out;
+  for (size_t c = 0; c + 1 < chains.offsets.size(); ++c)
+  {
+    std::vector<int64_t> path(
+      chains.nodes.begin() + chains.offsets[c], chains.nodes.begin() + chains.offsets[c + 1]);
+    if (path.size() > 2 && path.front() == path.back())
+    {
+      const auto at = std::find_if(
+        path.begin(), path.end() - 1, [&](int64_t v) { return stop[static_cast<size_t>(v)]; });
+      std::rotate(path.begin(), at, path.end() - 1);
+      path.back() = path.front();
+    }
+    out.nodes.push_back(path.front());
+    for (size_t i = 1; i < path.size(); ++i)
+    {
+      out.nodes.push_back(path[i]);
+      if (i + 1 < path.size() && stop[static_cast<size_t>(path[i])])
+      {
+        out.offsets.push_back(static_cast<int64_t>(out.nodes.size()));
+        out.nodes.push_back(path[i]);
+      }
+    }
+    out.offsets.push_back(static_cast<int64_t>(out.nodes.size()));
+  }
+  return out;
+}
+} // namespace
+
+void addCreaseLines(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& dihedral, const std::vector<double>& meanCurvature,
+  const FeatureRefinementOptions& options, FeatureRefinementResult& result)
+{
+  if (!(options.creaseLineAngle > 0.0))
+  {
+    return;
+  }
+  const std::vector<int64_t> segments =
+    freeCreaseSegments(edges, dihedral, options.creaseLineAngle * kPi / 180.0, result);
+  const Polylines chains = splitAt(chainSegments(segments, mesh.numPoints()), result.featureVertex);
+  for (size_t c = 0; c + 1 < chains.offsets.size(); ++c)
+  {
+    const int64_t begin = chains.offsets[c], end = chains.offsets[c + 1];
+    if (end - begin - 1 < std::max(1, options.creaseLineEdges))
+    {
+      continue;
+    }
+    appendLine(mesh, chains, begin, end, meanCurvature, result);
+  }
+}
+} // namespace refinement
+} // namespace detail
+} // namespace tc
