@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The atlas file: writeAtlas then readAtlas is bit-exact, a failed write changes nothing, and
 // every kind of damaged or foreign file is refused with a message that names it.
-#include "temp_folder.h"
-#include "tc/gim/atlas.h"
-#include "tc/io/atlas_io.h"
 #include "tc/common/errors.h"
+#include "tc/gim/atlas.h"
 #include "tc/gim/geometry_images.h"
 #include "tc/gim/path_tracing.h"
+#include "tc/io/atlas_io.h"
+#include "temp_folder.h"
 
 #include "pipeline_fixture.h"
 #include "test_progress.h"
@@ -479,6 +479,7 @@ struct ExrPart
 {
   Imf::Header header;
   std::map<std::string, std::vector<float>> channels; ///< per channel: height x width
+  std::map<std::string, std::vector<uint32_t>> codes; ///< UINT channels (version 4), the same
 };
 
 std::vector<ExrPart> loadParts(const std::string& path)
@@ -494,6 +495,15 @@ std::vector<ExrPart> loadParts(const std::string& path)
     Imf::FrameBuffer buffer;
     for (auto it = part.header.channels().begin(); it != part.header.channels().end(); ++it)
     {
+      if (it.channel().type == Imf::UINT)
+      {
+        std::vector<uint32_t>& codes = part.codes[it.name()];
+        codes.assign(width * height, 0u);
+        buffer.insert(it.name(),
+          Imf::Slice(Imf::UINT, reinterpret_cast<char*>(codes.data()), sizeof(uint32_t),
+            sizeof(uint32_t) * width));
+        continue;
+      }
       std::vector<float>& data = part.channels[it.name()];
       data.assign(width * height, 0.0f);
       buffer.insert(it.name(),
@@ -536,6 +546,12 @@ void saveParts(const std::string& path, std::vector<ExrPart>& parts)
       buffer.insert(name,
         Imf::Slice(
           Imf::FLOAT, reinterpret_cast<char*>(data.data()), sizeof(float), sizeof(float) * width));
+    }
+    for (auto& [name, codes] : parts[p].codes)
+    {
+      buffer.insert(name,
+        Imf::Slice(Imf::UINT, reinterpret_cast<char*>(codes.data()), sizeof(uint32_t),
+          sizeof(uint32_t) * width));
     }
     Imf::OutputPart out(file, static_cast<int>(p));
     out.setFrameBuffer(buffer);
@@ -637,14 +653,25 @@ Json metadataOf(const std::vector<ExrPart>& parts)
 }
 
 /// Writes `atlas` to `to` as version 1 or 2 wrote it, from `from`, the same atlas written by
-/// writeAtlas: the same headers and metadata, but every part holds its whole image (no compact
-/// parts, no "texels" entries) and the metadata says `version`, stored plainly for version 1.
+/// writeAtlas: the same headers and metadata, but every part holds its whole image as floats
+/// (no compact parts, no "texels" entries, no lattice) and the metadata says `version`, stored
+/// plainly for version 1.
 void writeOldVersion(
   const tc::Atlas& atlas, const std::string& from, const std::string& to, int version)
 {
   std::vector<ExrPart> parts = loadParts(from);
   for (ExrPart& part : parts)
   {
+    if (!part.codes.empty())
+    {
+      // A version-4 part of codes: the float channels of its 3 components instead.
+      part.codes.clear();
+      part.header.channels() = Imf::ChannelList();
+      for (const char* name : { "X", "Y", "Z" })
+      {
+        part.header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      }
+    }
     const std::string name = part.header.name();
     const size_t dot = name.rfind('.');
     const size_t k = std::stoul(name.substr(dot + 1));
@@ -676,6 +703,7 @@ void writeOldVersion(
   }
   Json metadata = metadataOf(parts);
   metadata["version"] = version;
+  metadata.erase("lattice");
   for (Json& image : metadata["images"])
   {
     image.erase("texels");
@@ -880,14 +908,16 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
     static_cast<int>(text.size()));
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
-  EXPECT_EQ(tc::kAtlasFileVersion, 3);
+  EXPECT_EQ(tc::kAtlasFileVersion, 4);
   const Json metadata = Json::parse(text);
   for (const Json& image : metadata["images"])
   {
     EXPECT_EQ(image["texels"], "new");
   }
   EXPECT_EQ(metadata["format"], "TriChart atlas");
-  EXPECT_EQ(metadata["version"], tc::kAtlasFileVersion);
+  // Its floats lie on no lattice: every attribute is stored as floats.
+  EXPECT_EQ(metadata["version"], tc::kAtlasFloatVersion);
+  EXPECT_EQ(metadata.count("lattice"), 0u);
   EXPECT_EQ(metadata["charts"].size(), 4u);
   EXPECT_EQ(metadata["charts"][0]["levelError"][0], "inf");
   EXPECT_TRUE(metadata["inputPoints"].is_number_integer());
@@ -1295,19 +1325,30 @@ TEST_F(AtlasIo, EachVersionMakesTheFileSmaller)
   const tc::Atlas atlas =
     tc::buildGeometryImages(tc::tracePaths(bunny->mesh, bunny->result), bunny->result, {}, {}, {});
   ASSERT_GE(atlas.charts.size(), 100u);
-  const std::string current = file("version3.exr");
+  const std::string current = file("version4.exr");
   tc::writeAtlas(atlas, current);
   const std::string first = file("version1.exr");
   writeOldVersion(atlas, current, first, 1);
   const std::string second = file("version2.exr");
   writeOldVersion(atlas, current, second, 2);
+  // Version 3, the floats: the same atlas but for one interior sample of chart 0's finest
+  // level moved off the lattice.
+  tc::Atlas floats = atlas;
+  const int32_t top = floats.charts[0].maxLevel;
+  float* moved = const_cast<float*>(tc::atlasSample(floats, 0, 0, top, 1, 1));
+  moved[0] = std::nextafter(moved[0], HUGE_VALF);
+  const std::string third = file("version3.exr");
+  tc::writeAtlas(floats, third);
   expectBitIdentical(atlas, tc::readAtlas(first));
   expectBitIdentical(atlas, tc::readAtlas(second));
+  expectBitIdentical(floats, tc::readAtlas(third));
   expectBitIdentical(atlas, tc::readAtlas(current));
 
   // The pipeline's pyramid is point-sampled: every image is stored compactly.
   const std::vector<ExrPart> parts = loadParts(current);
   const Json metadata = metadataOf(parts);
+  EXPECT_EQ(metadata["version"], 4);
+  EXPECT_EQ(metadataOf(loadParts(third))["version"], 3);
   for (const Json& image : metadata["images"])
   {
     EXPECT_EQ(image["texels"], "new");
@@ -1317,18 +1358,22 @@ TEST_F(AtlasIo, EachVersionMakesTheFileSmaller)
     parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value().size());
   const double v1 = static_cast<double>(fs::file_size(first));
   const double v2 = static_cast<double>(fs::file_size(second));
-  const double v3 = static_cast<double>(fs::file_size(current));
+  const double v3 = static_cast<double>(fs::file_size(third));
+  const double v4 = static_cast<double>(fs::file_size(current));
   const double triangles = static_cast<double>(bunny->mesh.numTriangles());
   std::cout << "[ figures  ] bunny_npm, " << atlas.charts.size() << " charts: metadata " << text
             << " -> " << packed << " bytes (" << text / packed << "x); file version 1 " << v1
-            << ", version 2 " << v2 << ", version 3 " << v3 << " bytes = " << v1 / triangles << ", "
-            << v2 / triangles << ", " << v3 / triangles << " bytes per input triangle\n";
+            << ", version 2 " << v2 << ", version 3 " << v3 << ", version 4 " << v4
+            << " bytes = " << v1 / triangles << ", " << v2 / triangles << ", " << v3 / triangles
+            << ", " << v4 / triangles << " bytes per input triangle\n";
   // Deflate shrinks JSON text by more than 2x; the file must lose at least half the text.
   EXPECT_GT(text / packed, 2.0);
   EXPECT_LT(v2, v1 - text / 2);
   // The coarser images are a third of the finest one's texels, which compact parts no longer
   // repeat.
   EXPECT_LT(v3, 0.85 * v2);
+  // Codes predicted from the coarser image take a fraction of the floats' bytes.
+  EXPECT_LT(v4, 0.6 * v3);
 }
 
 TEST_F(AtlasIo, ImagesThatAreNoPointSampledPyramidAreStoredWhole)
