@@ -210,7 +210,7 @@ bool encodeNormal(int32_t bits, const float* n, std::array<int32_t, 2>& uv)
     px = fx;
   }
   // Of the four codes around the projection, the one whose normal is closest: at 12 bits its
-  // angle is at most 0.04 degrees, the nearest code's 0.06.
+  // angle is at most about 0.041 degrees (0.0406 on the bunny), the nearest code's 0.059.
   const int32_t limit = normalLimit(bits);
   const double u0 = std::floor(px * limit);
   const double v0 = std::floor(py * limit);

@@ -12,7 +12,7 @@
 /// - Normals: octahedral codes (u, v), |u|, |v| <= L = 2^(kNormalBits - 1) - 1 (Cigolle et al.
 ///   2014, "A survey of efficient representations for independent unit vectors"), decoded in
 ///   double and rounded to float; the closest of the four codes around a normal's projection
-///   moves it by at most 0.04 degrees at 12 bits (0.02 at 13; 12 bits store one bit less per
+///   moves it by at most about 0.041 degrees at 12 bits (0.02 at 13, which costs a bit more per
 ///   component).
 #pragma once
 
