@@ -1728,6 +1728,7 @@ std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> documentedCodes(
 {
   std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> codes;
   const size_t comps = a == 0 ? 3 : 2;
+  size_t twins = 0;
   for (size_t k = atlas.images.size(); k-- > 0;)
   {
     const ExrPart& part = partNamed(
@@ -1748,6 +1749,25 @@ std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> documentedCodes(
           {
             code = codes.at({ ci, d - 1, i / 2, j / 2 });
             continue;
+          }
+          if (a == 0)
+          {
+            // A position whose twin on the chart across its side came first is not stored.
+            const std::array<int32_t, 2> side = tc::gridSide(i, j, big);
+            if (side[0] >= 0)
+            {
+              const tc::AtlasChart& chart = atlas.charts[c];
+              const std::array<int32_t, 2> ij =
+                tc::sidePoint(chart.neighborSide[side[0]], big - side[1], big);
+              const auto twin = codes.find({ chart.neighborChart[side[0]], d, ij[0], ij[1] });
+              if (twin != codes.end())
+              {
+                code = twin->second;
+                previous = code;
+                ++twins;
+                continue;
+              }
+            }
           }
           std::array<int32_t, 4> ends = j % 2 == 0 ? std::array<int32_t, 4>{ i - 1, j, i + 1, j }
             : i % 2 == 0                           ? std::array<int32_t, 4>{ i, j - 1, i, j + 1 }
@@ -1770,6 +1790,8 @@ std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> documentedCodes(
       }
     }
   }
+  // Shared sides: every position sample on one has a twin, stored once.
+  EXPECT_EQ(twins > 0, a == 0);
   return codes;
 }
 } // namespace

@@ -199,6 +199,41 @@ std::vector<uint8_t> zipUnpredicted(std::vector<uint8_t> t)
   return bytes;
 }
 
+/// The codes of the twin of sample (i, j) of level d of chart c in image k, the same sample of the
+/// chart across the side that holds it (gridSide's side; a corner's first), when the stream
+/// reaches the twin first: that chart has level d in a coarser image, or in image k with a lower
+/// index. Null otherwise. Positions only: validateAtlas makes shared sides' positions
+/// bit-identical, whereas a feature side's normals differ between its charts. `codes` holds
+/// the position codes of the images before k, `current` those of image k so far.
+const int32_t* earlierTwin(const Atlas& atlas, const std::vector<std::vector<int32_t>>& codes,
+  const std::vector<int32_t>& current, size_t k, int32_t c, int32_t d, int32_t i, int32_t j)
+{
+  const int32_t n = int32_t(1) << d;
+  const std::array<int32_t, 2> side = gridSide(i, j, n);
+  if (side[0] < 0)
+  {
+    return nullptr;
+  }
+  const AtlasChart& chart = atlas.charts[static_cast<size_t>(c)];
+  const int32_t nb = chart.neighborChart[static_cast<size_t>(side[0])];
+  const AtlasChart& other = atlas.charts[static_cast<size_t>(nb)];
+  if (other.maxLevel < d)
+  {
+    return nullptr;
+  }
+  const size_t kk = static_cast<size_t>(other.maxLevel - d);
+  if (kk < k || (kk == k && nb >= c))
+  {
+    return nullptr;
+  }
+  const std::array<int32_t, 2> ij =
+    sidePoint(chart.neighborSide[static_cast<size_t>(side[0])], n - side[1], n);
+  const std::array<int32_t, 2> xy = atlasTexel(other, d, ij[0], ij[1]);
+  const size_t texel = static_cast<size_t>(xy[1]) * static_cast<size_t>(atlas.images[kk].width) +
+    static_cast<size_t>(xy[0]);
+  return (kk == k ? current : codes[kk]).data() + 3 * texel;
+}
+
 /// The codes of attribute a (< kCodedAttributes) of the chart samples of image k, 0 elsewhere;
 /// false when one does not decode back to its float exactly.
 bool imageCodes(
@@ -315,7 +350,7 @@ std::vector<uint32_t> planeResiduals(std::vector<uint32_t> values, int32_t width
 CodeWriter::CodeWriter(const Atlas& atlas, const AtlasLattice& lattice)
   : Source(atlas)
   , Lattice(lattice)
-  , Coarser(kCodedAttributes)
+  , Codes(kCodedAttributes, std::vector<std::vector<int32_t>>(atlas.images.size()))
 {
 }
 
@@ -330,27 +365,32 @@ std::vector<uint32_t> CodeWriter::residuals(size_t k, size_t a, const ImageLayou
   }
   std::vector<uint32_t> out(
     static_cast<size_t>(image.width) * static_cast<size_t>(layout.partHeight) * comps, 0);
-  const Predictor predict(Source, k, Coarser[a], comps);
+  static const std::vector<int32_t> none;
+  const Predictor predict(Source, k, k + 1 < Codes[a].size() ? Codes[a][k + 1] : none, comps);
   std::array<int64_t, 3> previous{ 0, 0, 0 };
   size_t o = 0;
   forEachNewSample(Source, k,
     [&](int32_t c, int32_t d, int32_t i, int32_t j, size_t texel)
     {
+      const bool twin = a == 0 && earlierTwin(Source, Codes[0], codes, k, c, d, i, j);
       for (size_t x = 0; x < comps; ++x)
       {
         const int64_t code = codes[texel * comps + x];
-        out[o++] = zigzag(code - (d == 0 ? previous[x] : predict(c, d, i, j, x)));
+        if (!twin)
+        {
+          out[o++] = zigzag(code - (d == 0 ? previous[x] : predict(c, d, i, j, x)));
+        }
         previous[x] = code;
       }
     });
-  Coarser[a] = std::move(codes);
+  Codes[a][k] = std::move(codes);
   return out;
 }
 
 CodeReader::CodeReader(const Atlas& atlas, const AtlasLattice& lattice)
   : Source(atlas)
   , Lattice(lattice)
-  , Coarser(kCodedAttributes)
+  , Codes(kCodedAttributes, std::vector<std::vector<int32_t>>(atlas.images.size()))
 {
 }
 
@@ -360,7 +400,8 @@ void CodeReader::decode(size_t k, size_t a, const ImageLayout& layout,
 {
   const size_t comps = static_cast<size_t>(codeComponents(a));
   std::vector<int32_t> codes(layout.roles.size() * comps, 0);
-  const std::vector<int32_t>& coarse = Coarser[a];
+  static const std::vector<int32_t> none;
+  const std::vector<int32_t>& coarse = k + 1 < Codes[a].size() ? Codes[a][k + 1] : none;
   const int64_t limit = normalLimit(Lattice.normalBits);
   const Predictor predict(Source, k, coarse, comps);
   std::array<int64_t, 3> previous{ 0, 0, 0 };
@@ -368,8 +409,15 @@ void CodeReader::decode(size_t k, size_t a, const ImageLayout& layout,
   forEachNewSample(Source, k,
     [&](int32_t c, int32_t d, int32_t i, int32_t j, size_t texel)
     {
+      const int32_t* twin = a == 0 ? earlierTwin(Source, Codes[0], codes, k, c, d, i, j) : nullptr;
       for (size_t x = 0; x < comps; ++x)
       {
+        if (twin)
+        {
+          codes[texel * comps + x] = twin[x];
+          previous[x] = twin[x];
+          continue;
+        }
         const int64_t code =
           (d == 0 ? previous[x] : predict(c, d, i, j, x)) + unzigzag(residuals[o++]);
         const int64_t low = a == 0 ? 0 : -limit;
@@ -411,6 +459,6 @@ void CodeReader::decode(size_t k, size_t a, const ImageLayout& layout,
         decodeNormal(Lattice.normalBits, code[0], code[1], value);
       }
     });
-  Coarser[a] = std::move(codes);
+  Codes[a][k] = std::move(codes);
 }
 } // namespace tc::detail

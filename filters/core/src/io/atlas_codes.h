@@ -59,15 +59,17 @@ public:
   CodeWriter(const Atlas& atlas, const AtlasLattice& lattice);
 
   /// The zigzag residual of every new texel of attribute a (< kCodedAttributes) of image k, in
-  /// the order of a coded part (chart by chart, each level's new samples row by row), as rows
-  /// of the image's width (partHeight of them; the last one ends in 0), codeComponents(a) per
-  /// texel. Images must come coarsest first, each attribute once.
+  /// the order of a coded part (chart by chart, each level's new samples row by row; a position
+  /// whose twin across a shared side came before is left out), as rows of the image's width
+  /// (partHeight of them, ending in zeros), codeComponents(a) per texel. Images must come
+  /// coarsest first, each attribute once.
   std::vector<uint32_t> residuals(size_t k, size_t a, const ImageLayout& layout);
 
 private:
   const Atlas& Source;
   AtlasLattice Lattice;
-  std::vector<std::vector<int32_t>> Coarser; ///< per coded attribute: the codes of image k + 1
+  /// Per coded attribute, per image: the codes of the images written so far.
+  std::vector<std::vector<std::vector<int32_t>>> Codes;
 };
 
 /// Reads coded attributes image by image, coarsest first (the inverse of CodeWriter).
@@ -87,6 +89,6 @@ public:
 private:
   const Atlas& Source;
   AtlasLattice Lattice;
-  std::vector<std::vector<int32_t>> Coarser;
+  std::vector<std::vector<std::vector<int32_t>>> Codes; ///< as CodeWriter's, of those read
 };
 } // namespace tc::detail
