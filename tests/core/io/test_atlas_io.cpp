@@ -2001,3 +2001,49 @@ TEST_F(AtlasIo, RefusesDamagedVersion4Files)
   EXPECT_TRUE(mentions(error, "the texels of part 'Position.0' do not match their checksum"))
     << error;
 }
+
+TEST_F(AtlasIo, FlippedBytesOfVersion4AreRefusedOrHarmless)
+{
+  const tc::Atlas& atlas = latticeAtlas();
+  const std::string good = file("good4.exr");
+  tc::writeAtlas(atlas, good);
+  ASSERT_EQ(metadataOf(loadParts(good))["version"], 4);
+  const std::string bytes = fileBytes(good);
+  const std::string bad = file("flipped4.exr");
+  size_t refused = 0, tried = 0;
+  for (size_t at = 0; at < bytes.size(); at += 1 + bytes.size() / 151, ++tried)
+  {
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x5a);
+    writeBytes(bad, damaged);
+    // Never silently different (nor a crash): a refusal naming the file or the same atlas.
+    try
+    {
+      const tc::Atlas read = tc::readAtlas(bad);
+      SCOPED_TRACE("byte " + std::to_string(at) + " flipped and read");
+      expectBitIdentical(atlas, read);
+    }
+    catch (const tc::InputError& error)
+    {
+      ++refused;
+      EXPECT_TRUE(mentions(error.what(), bad)) << error.what();
+    }
+  }
+  std::cout << "[ figures  ] version 4: " << refused << " of " << tried
+            << " single-byte flips refused (" << bytes.size() << "-byte file)\n";
+  EXPECT_GT(refused, tried / 2);
+}
+
+TEST_F(AtlasIo, Version4ReportsProgressAndHonoursAbort)
+{
+  const tc::Atlas& atlas = latticeAtlas();
+  const std::string path = file("progress4.exr");
+  const auto stopHalfWay = [](double f) { return f < 0.5; };
+  // One report per part at least: 2 attributes x 4 or more images.
+  tctest::expectProgressAndAbort(
+    [&](const tc::Progress& progress) { tc::writeAtlas(atlas, path, progress); }, 8, stopHalfWay);
+  EXPECT_EQ(listing(), std::vector<std::string>{ "progress4.exr" });
+  tctest::expectProgressAndAbort([&](const tc::Progress& progress)
+    { expectBitIdentical(atlas, tc::readAtlas(path, progress)); },
+    8, stopHalfWay);
+}

@@ -201,8 +201,10 @@ std::vector<Imf::Header> partHeaders(const Atlas& atlas, const WritePlan& plan,
       header.setName(partName(attribute.name, k));
       header.setType(Imf::SCANLINEIMAGE);
       header.compression() = Imf::ZIP_COMPRESSION;
-      // Deflate's best: 1 to 2 % smaller than OpenEXR's default level 4, in a few ms per MB.
-      header.zipCompressionLevel() = 9;
+      // Deflate's level 6: on the byte planes of version 4 within 1 % of level 9 (whose long
+      // match chains over the planes' zeros take twice the time) and 3 % smaller than
+      // OpenEXR's default 4.
+      header.zipCompressionLevel() = 6;
       const bool codes = coded(plan.lattice, a);
       for (const std::string& channel :
         codes ? codeChannelNames(a) : channelNames(attribute.components))
