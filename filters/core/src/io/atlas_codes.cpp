@@ -234,6 +234,19 @@ const int32_t* earlierTwin(const Atlas& atlas, const std::vector<std::vector<int
   return (kk == k ? current : codes[kk]).data() + 3 * texel;
 }
 
+/// Stores the codes of attribute a of image k in `store` (per attribute, per image) for the
+/// images after it: a finer image predicts from them, a finer position may be a twin of one of
+/// any coarser image. Normals are needed by image k - 1 only: those of image k + 1 go.
+void keepCodes(std::vector<std::vector<std::vector<int32_t>>>& store, size_t a, size_t k,
+  std::vector<int32_t> codes)
+{
+  store[a][k] = std::move(codes);
+  if (a != 0 && k + 1 < store[a].size())
+  {
+    std::vector<int32_t>().swap(store[a][k + 1]);
+  }
+}
+
 /// The codes of attribute a (< kCodedAttributes) of the chart samples of image k, 0 elsewhere;
 /// false when one does not decode back to its float exactly.
 bool imageCodes(
@@ -383,7 +396,7 @@ std::vector<uint32_t> CodeWriter::residuals(size_t k, size_t a, const ImageLayou
         previous[x] = code;
       }
     });
-  Codes[a][k] = std::move(codes);
+  keepCodes(Codes, a, k, std::move(codes));
   return out;
 }
 
@@ -459,6 +472,6 @@ void CodeReader::decode(size_t k, size_t a, const ImageLayout& layout,
         decodeNormal(Lattice.normalBits, code[0], code[1], value);
       }
     });
-  Codes[a][k] = std::move(codes);
+  keepCodes(Codes, a, k, std::move(codes));
 }
 } // namespace tc::detail

@@ -68,7 +68,8 @@ public:
 private:
   const Atlas& Source;
   AtlasLattice Lattice;
-  /// Per coded attribute, per image: the codes of the images written so far.
+  /// Per coded attribute, per image: the codes of the images written so far (of Normal, the
+  /// last one only).
   std::vector<std::vector<std::vector<int32_t>>> Codes;
 };
 
