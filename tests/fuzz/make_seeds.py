@@ -209,10 +209,15 @@ def have_trichart():
     return True
 
 
+# Atlas seeds of an older format version, kept as they are (the writer no longer makes them,
+# the reader still reads them): version 3 (float texels) of the two atlases below.
+KEPT_ATLAS_SEEDS = ("cube_v3.exr", "bunny_coarse_v3.exr")
+
+
 def atlas_seeds():
     """Atlases written by `trichart build` (the whole pipeline), so the seeds are files the
-    atlas writer makes: the cube (12 charts, all at level 2) and the bundled bunny coarsely
-    (64 charts at levels 1 and 2)."""
+    atlas writer makes (version 4: Position and Normal as lattice codes): the cube (12 charts,
+    all at level 2) and the bundled bunny coarsely (64 charts at levels 1 and 2)."""
     if not have_trichart():
         print("make_seeds: no trichart package; the atlas seeds are kept as they are")
         return
@@ -253,6 +258,11 @@ def main():
     for target in ("off", "ply", "ply_gz", "obj", "scene", "stl", "cli") + \
             (("atlas",) if have_trichart() else ()):
         folder = os.path.join(CORPUS, target)
+        if target == "atlas":
+            for name in os.listdir(folder):
+                if name not in KEPT_ATLAS_SEEDS:
+                    os.remove(os.path.join(folder, name))
+            continue
         shutil.rmtree(folder, ignore_errors=True)
         os.makedirs(folder)
     off_seeds()

@@ -69,6 +69,11 @@ protected:
   const Built* B_ = nullptr;
 };
 
+/// The farthest the lattice of the atlas file moves a sample, as a fraction of the input's
+/// diagonal: half the diagonal of a cube of the step, step <= diagonal * 2^-16
+/// (docs/atlas-format.md, version 4).
+const double kLatticeMove = std::ldexp(std::sqrt(3.0) / 2.0, -16);
+
 int64_t eulerOf(const tc::TriMesh& mesh)
 {
   int64_t euler = 0;
@@ -126,15 +131,21 @@ TEST_P(AtlasOnMesh, FittedInteriorSamplesMoveNoFartherThanTheInterpolatedError)
         const double offset = std::sqrt(double(f[0] - s[0]) * (f[0] - s[0]) +
           double(f[1] - s[1]) * (f[1] - s[1]) + double(f[2] - s[2]) * (f[2] - s[2]));
         moved += offset > 0.0 ? 1 : 0;
-        // Float samples and the stored error round by a few 1e-7 of the model's size.
-        worst = std::max(worst, (offset - bound) / fitted.inputDiagonal);
+        // Float samples and the stored error round by a few 1e-7 of the model's size; the
+        // interpolated error holds its own lattice snap, not the fitted sample's.
+        worst = std::max(worst, (offset - bound) / fitted.inputDiagonal - kLatticeMove);
       }
     }
   }
   std::printf("%s: %lld interior samples fitted; largest offset beyond the interpolated error "
               "%.3g of the diagonal\n",
     GetParam().c_str(), static_cast<long long>(moved), worst);
-  EXPECT_GT(moved, 0);
+  // The cube's faces are planes: the fit moves its samples by float rounding, which the
+  // lattice snap undoes.
+  if (GetParam() != "cube")
+  {
+    EXPECT_GT(moved, 0);
+  }
   EXPECT_LE(worst, 1e-6);
 }
 
@@ -144,7 +155,7 @@ TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacte
   ASSERT_EQ(tctest::manifoldDefect(B_->input->mesh, euler), "");
   const tc::Atlas& atlas = B_->atlas;
   std::mt19937 random(12345);
-  int64_t farApart = 0;
+  int64_t farApart = 0, flat = 0, triangles = 0;
   for (int trial = 0; trial < 100; ++trial)
   {
     std::vector<int32_t> levels(atlas.charts.size());
@@ -164,14 +175,18 @@ TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacte
     }
     const tc::RebuiltMesh rebuilt = tc::rebuildMesh(atlas, levels);
     int64_t e = 0;
-    const std::string defect = tctest::manifoldDefect(rebuilt.mesh, e);
+    const std::string defect = tctest::manifoldDefect(rebuilt.mesh, e, &flat);
+    triangles += rebuilt.mesh.numTriangles();
     ASSERT_EQ(defect, "") << "trial " << trial;
     ASSERT_EQ(e, euler) << "trial " << trial;
   }
   std::printf("%s: 100 rebuilds closed, Euler characteristic %lld, %lld chart sides 3+ levels "
-              "finer than their neighbour\n",
-    GetParam().c_str(), static_cast<long long>(euler), static_cast<long long>(farApart));
+              "finer than their neighbour, %lld of %lld triangles flattened by the lattice\n",
+    GetParam().c_str(), static_cast<long long>(euler), static_cast<long long>(farApart),
+    static_cast<long long>(flat), static_cast<long long>(triangles));
   EXPECT_GT(farApart, 0);
+  // Slivers thinner than the lattice step are rare: 9 per million triangles on fandisk.
+  EXPECT_LE(flat, triangles / 10000);
 }
 
 TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)

@@ -43,6 +43,14 @@ double norm(const Vec& a)
 {
   return std::sqrt(dot(a, a));
 }
+
+/// The farthest the lattice of the atlas file (docs/atlas-format.md, version 4) moves a sample:
+/// half the diagonal of a cube of its step, the largest power of two <= diagonal * 2^-16.
+double latticeMove(const tc::Atlas& atlas)
+{
+  return std::ldexp(std::sqrt(3.0) / 2.0, std::ilogb(atlas.inputDiagonal) - 16);
+}
+
 Vec toVec(const float* f)
 {
   return { f[0], f[1], f[2] };
@@ -1020,7 +1028,8 @@ TEST(GeometryImages, SidesAreFittedAtTheLevelTheyAreDrawnAt)
     sides, chordRatio, offLine);
   ASSERT_GT(sides, 0) << "the test needs neighbours of different d_max";
   EXPECT_LT(chordRatio, 0.75);
-  EXPECT_LT(offLine, 1e-5);
+  // The lattice snap (docs/atlas-format.md, version 4) moves the sample and the chord.
+  EXPECT_LT(offLine, 1e-5 + 2.0 * latticeMove(atlas));
 }
 
 TEST(GeometryImages, SharedSidesAndCornersAreBitIdenticalAcrossUnequalLevels)
@@ -1063,7 +1072,9 @@ TEST(GeometryImages, SharedSidesAndCornersAreBitIdenticalAcrossUnequalLevels)
       }
     }
   }
-  EXPECT_LT(worst, 1e-5);
+  // The lattice snap moves a coordinate by at most half a step (twice that in 2 p[0]); the
+  // extra attributes are not snapped.
+  EXPECT_LT(worst, 1e-5 + latticeMove(atlas));
 }
 
 TEST(GeometryImages, CoarserLevelsAreEveryOtherSampleAndPackingKeepsChartsApart)
@@ -1424,8 +1435,9 @@ TEST(GeometryImages, FeatureSidesKeepOneSidedNormalsAndIdenticalPositions)
         if (corner)
         {
           // The corner keeps the shared normal, the cube's corner diagonal, the same in every
-          // chart (expectAtlasInvariants compared them bit for bit).
-          EXPECT_NEAR(dot(q, face), 1.0 / std::sqrt(3.0), 1e-6);
+          // chart (expectAtlasInvariants compared them bit for bit), up to the 0.041 degrees
+          // of the atlas file's 12-bit octahedral normals (docs/atlas-format.md, version 4).
+          EXPECT_NEAR(dot(q, face), 1.0 / std::sqrt(3.0), 1e-6 + 0.041 * 3.14159265358979 / 180);
           ++cornerSamples;
           continue;
         }

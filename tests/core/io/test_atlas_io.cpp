@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The atlas file: writeAtlas then readAtlas is bit-exact, a failed write changes nothing, and
 // every kind of damaged or foreign file is refused with a message that names it.
-#include "temp_folder.h"
-#include "tc/gim/atlas.h"
-#include "tc/io/atlas_io.h"
 #include "tc/common/errors.h"
+#include "tc/gim/atlas.h"
 #include "tc/gim/geometry_images.h"
 #include "tc/gim/path_tracing.h"
+#include "tc/io/atlas_io.h"
+#include "temp_folder.h"
 
 #include "pipeline_fixture.h"
 #include "test_progress.h"
@@ -479,6 +479,7 @@ struct ExrPart
 {
   Imf::Header header;
   std::map<std::string, std::vector<float>> channels; ///< per channel: height x width
+  std::map<std::string, std::vector<uint32_t>> codes; ///< UINT channels (version 4), the same
 };
 
 std::vector<ExrPart> loadParts(const std::string& path)
@@ -494,6 +495,15 @@ std::vector<ExrPart> loadParts(const std::string& path)
     Imf::FrameBuffer buffer;
     for (auto it = part.header.channels().begin(); it != part.header.channels().end(); ++it)
     {
+      if (it.channel().type == Imf::UINT)
+      {
+        std::vector<uint32_t>& codes = part.codes[it.name()];
+        codes.assign(width * height, 0u);
+        buffer.insert(it.name(),
+          Imf::Slice(Imf::UINT, reinterpret_cast<char*>(codes.data()), sizeof(uint32_t),
+            sizeof(uint32_t) * width));
+        continue;
+      }
       std::vector<float>& data = part.channels[it.name()];
       data.assign(width * height, 0.0f);
       buffer.insert(it.name(),
@@ -536,6 +546,12 @@ void saveParts(const std::string& path, std::vector<ExrPart>& parts)
       buffer.insert(name,
         Imf::Slice(
           Imf::FLOAT, reinterpret_cast<char*>(data.data()), sizeof(float), sizeof(float) * width));
+    }
+    for (auto& [name, codes] : parts[p].codes)
+    {
+      buffer.insert(name,
+        Imf::Slice(Imf::UINT, reinterpret_cast<char*>(codes.data()), sizeof(uint32_t),
+          sizeof(uint32_t) * width));
     }
     Imf::OutputPart out(file, static_cast<int>(p));
     out.setFrameBuffer(buffer);
@@ -637,14 +653,25 @@ Json metadataOf(const std::vector<ExrPart>& parts)
 }
 
 /// Writes `atlas` to `to` as version 1 or 2 wrote it, from `from`, the same atlas written by
-/// writeAtlas: the same headers and metadata, but every part holds its whole image (no compact
-/// parts, no "texels" entries) and the metadata says `version`, stored plainly for version 1.
+/// writeAtlas: the same headers and metadata, but every part holds its whole image as floats
+/// (no compact parts, no "texels" entries, no lattice) and the metadata says `version`, stored
+/// plainly for version 1.
 void writeOldVersion(
   const tc::Atlas& atlas, const std::string& from, const std::string& to, int version)
 {
   std::vector<ExrPart> parts = loadParts(from);
   for (ExrPart& part : parts)
   {
+    if (!part.codes.empty())
+    {
+      // A version-4 part of codes: the float channels of its 3 components instead.
+      part.codes.clear();
+      part.header.channels() = Imf::ChannelList();
+      for (const char* name : { "X", "Y", "Z" })
+      {
+        part.header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      }
+    }
     const std::string name = part.header.name();
     const size_t dot = name.rfind('.');
     const size_t k = std::stoul(name.substr(dot + 1));
@@ -676,6 +703,7 @@ void writeOldVersion(
   }
   Json metadata = metadataOf(parts);
   metadata["version"] = version;
+  metadata.erase("lattice");
   for (Json& image : metadata["images"])
   {
     image.erase("texels");
@@ -880,14 +908,16 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
     static_cast<int>(text.size()));
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
-  EXPECT_EQ(tc::kAtlasFileVersion, 3);
+  EXPECT_EQ(tc::kAtlasFileVersion, 4);
   const Json metadata = Json::parse(text);
   for (const Json& image : metadata["images"])
   {
     EXPECT_EQ(image["texels"], "new");
   }
   EXPECT_EQ(metadata["format"], "TriChart atlas");
-  EXPECT_EQ(metadata["version"], tc::kAtlasFileVersion);
+  // Its floats lie on no lattice: every attribute is stored as floats.
+  EXPECT_EQ(metadata["version"], tc::kAtlasFloatVersion);
+  EXPECT_EQ(metadata.count("lattice"), 0u);
   EXPECT_EQ(metadata["charts"].size(), 4u);
   EXPECT_EQ(metadata["charts"][0]["levelError"][0], "inf");
   EXPECT_TRUE(metadata["inputPoints"].is_number_integer());
@@ -1295,19 +1325,30 @@ TEST_F(AtlasIo, EachVersionMakesTheFileSmaller)
   const tc::Atlas atlas =
     tc::buildGeometryImages(tc::tracePaths(bunny->mesh, bunny->result), bunny->result, {}, {}, {});
   ASSERT_GE(atlas.charts.size(), 100u);
-  const std::string current = file("version3.exr");
+  const std::string current = file("version4.exr");
   tc::writeAtlas(atlas, current);
   const std::string first = file("version1.exr");
   writeOldVersion(atlas, current, first, 1);
   const std::string second = file("version2.exr");
   writeOldVersion(atlas, current, second, 2);
+  // Version 3, the floats: the same atlas but for one interior sample of chart 0's finest
+  // level moved off the lattice.
+  tc::Atlas floats = atlas;
+  const int32_t top = floats.charts[0].maxLevel;
+  float* moved = const_cast<float*>(tc::atlasSample(floats, 0, 0, top, 1, 1));
+  moved[0] = std::nextafter(moved[0], HUGE_VALF);
+  const std::string third = file("version3.exr");
+  tc::writeAtlas(floats, third);
   expectBitIdentical(atlas, tc::readAtlas(first));
   expectBitIdentical(atlas, tc::readAtlas(second));
+  expectBitIdentical(floats, tc::readAtlas(third));
   expectBitIdentical(atlas, tc::readAtlas(current));
 
   // The pipeline's pyramid is point-sampled: every image is stored compactly.
   const std::vector<ExrPart> parts = loadParts(current);
   const Json metadata = metadataOf(parts);
+  EXPECT_EQ(metadata["version"], 4);
+  EXPECT_EQ(metadataOf(loadParts(third))["version"], 3);
   for (const Json& image : metadata["images"])
   {
     EXPECT_EQ(image["texels"], "new");
@@ -1317,18 +1358,22 @@ TEST_F(AtlasIo, EachVersionMakesTheFileSmaller)
     parts[0].header.typedAttribute<Imf::StringAttribute>("trichartAtlasZ").value().size());
   const double v1 = static_cast<double>(fs::file_size(first));
   const double v2 = static_cast<double>(fs::file_size(second));
-  const double v3 = static_cast<double>(fs::file_size(current));
+  const double v3 = static_cast<double>(fs::file_size(third));
+  const double v4 = static_cast<double>(fs::file_size(current));
   const double triangles = static_cast<double>(bunny->mesh.numTriangles());
   std::cout << "[ figures  ] bunny_npm, " << atlas.charts.size() << " charts: metadata " << text
             << " -> " << packed << " bytes (" << text / packed << "x); file version 1 " << v1
-            << ", version 2 " << v2 << ", version 3 " << v3 << " bytes = " << v1 / triangles << ", "
-            << v2 / triangles << ", " << v3 / triangles << " bytes per input triangle\n";
+            << ", version 2 " << v2 << ", version 3 " << v3 << ", version 4 " << v4
+            << " bytes = " << v1 / triangles << ", " << v2 / triangles << ", " << v3 / triangles
+            << ", " << v4 / triangles << " bytes per input triangle\n";
   // Deflate shrinks JSON text by more than 2x; the file must lose at least half the text.
   EXPECT_GT(text / packed, 2.0);
   EXPECT_LT(v2, v1 - text / 2);
   // The coarser images are a third of the finest one's texels, which compact parts no longer
   // repeat.
   EXPECT_LT(v3, 0.85 * v2);
+  // Codes predicted from the coarser image take a fraction of the floats' bytes.
+  EXPECT_LT(v4, 0.6 * v3);
 }
 
 TEST_F(AtlasIo, ImagesThatAreNoPointSampledPyramidAreStoredWhole)
@@ -1574,4 +1619,431 @@ TEST_F(AtlasIo, ReportsProgressAndHonoursAbort)
   tctest::expectProgressAndAbort([&](const tc::Progress& progress)
     { expectBitIdentical(atlas, tc::readAtlas(path, progress)); },
     10, stopHalfWay);
+}
+
+// ------------------------------------------------------------------------------------------
+// Version 4: Position and Normal as lattice codes
+
+namespace
+{
+/// The bundled bunny's atlas with default options: its positions and normals on the lattice.
+const tc::Atlas& latticeAtlas()
+{
+  static const tc::Atlas atlas = []
+  {
+    const tctest::PipelineCase* bunny = tctest::pipelineCase(tctest::pipelineMeshPath("bunny_npm"));
+    return tc::buildGeometryImages(
+      tc::tracePaths(bunny->mesh, bunny->result), bunny->result, {}, {}, {});
+  }();
+  return atlas;
+}
+
+/// Coordinate a of position code q, by the decode rule of docs/atlas-format.md section 2.1.
+float documentedCoordinate(const Json& lattice, int a, int64_t q)
+{
+  return static_cast<float>(std::ldexp(static_cast<double>(lattice["origin"][a].get<int64_t>() + q),
+    lattice["stepExponent"].get<int>()));
+}
+
+/// The normal of octahedral code (u, v), by the decode rule of section 2.1.
+std::array<float, 3> documentedNormal(int bits, int64_t u, int64_t v)
+{
+  const double limit = static_cast<double>((int64_t(1) << (bits - 1)) - 1);
+  const auto s = [](double t) { return t >= 0.0 ? 1.0 : -1.0; };
+  double x = static_cast<double>(u) / limit, y = static_cast<double>(v) / limit;
+  const double z = 1.0 - std::abs(x) - std::abs(y);
+  if (z < 0.0)
+  {
+    const double fx = (1.0 - std::abs(y)) * s(x);
+    y = (1.0 - std::abs(x)) * s(y);
+    x = fx;
+  }
+  const double length = std::sqrt(x * x + y * y + z * z);
+  return { static_cast<float>(x / length) + 0.0f, static_cast<float>(y / length) + 0.0f,
+    static_cast<float>(z / length) + 0.0f };
+}
+
+/// The residuals of a coded part, per channel (in texel order), from its stored values by the
+/// byte planes of section 2.1: per block of 16 rows, B -> t -> P -> residual bytes.
+std::vector<std::vector<uint32_t>> documentedResiduals(const ExrPart& part)
+{
+  const Imath::Box2i window = part.header.dataWindow();
+  const size_t width = static_cast<size_t>(window.max.x + 1);
+  const size_t height = static_cast<size_t>(window.max.y + 1);
+  std::vector<const std::vector<uint32_t>*> channels; // sorted by name, as the map is
+  for (const auto& [name, codes] : part.codes)
+  {
+    channels.push_back(&codes);
+  }
+  std::vector<std::vector<uint32_t>> residuals(
+    channels.size(), std::vector<uint32_t>(width * height));
+  for (size_t y0 = 0; y0 < height; y0 += 16)
+  {
+    const size_t y1 = std::min(height, y0 + 16);
+    std::vector<uint8_t> b;
+    for (size_t y = y0; y < y1; ++y)
+    {
+      for (const std::vector<uint32_t>* channel : channels)
+      {
+        for (size_t x = 0; x < width; ++x)
+        {
+          for (int byte = 0; byte < 4; ++byte)
+          {
+            b.push_back(static_cast<uint8_t>((*channel)[y * width + x] >> (8 * byte)));
+          }
+        }
+      }
+    }
+    const size_t half = (b.size() + 1) / 2;
+    std::vector<uint8_t> t(b.size()), p(b.size());
+    for (size_t m = 0; m < b.size(); ++m)
+    {
+      t[m % 2 == 0 ? m / 2 : half + m / 2] = b[m];
+    }
+    p[0] = t[0];
+    for (size_t m = 1; m < t.size(); ++m)
+    {
+      p[m] = static_cast<uint8_t>(t[m] - t[m - 1] + 128);
+    }
+    const size_t texels = (y1 - y0) * width;
+    for (size_t c = 0; c < channels.size(); ++c)
+    {
+      for (int byte = 0; byte < 4; ++byte)
+      {
+        for (size_t n = 0; n < texels; ++n)
+        {
+          residuals[c][y0 * width + n] |= static_cast<uint32_t>(p[(4 * c + byte) * texels + n])
+            << (8 * byte);
+        }
+      }
+    }
+  }
+  return residuals;
+}
+
+/// The decoded codes of every chart sample of attribute a (0 Position, 1 Normal) of every image
+/// by the order, prediction and zigzag of section 2.1, keyed by (chart, level, i, j).
+std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> documentedCodes(
+  const tc::Atlas& atlas, const std::vector<ExrPart>& parts, size_t a)
+{
+  std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> codes;
+  const size_t comps = a == 0 ? 3 : 2;
+  size_t twins = 0;
+  for (size_t k = atlas.images.size(); k-- > 0;)
+  {
+    const ExrPart& part = partNamed(
+      const_cast<std::vector<ExrPart>&>(parts), atlas.attributes[a].name + "." + std::to_string(k));
+    const std::vector<std::vector<uint32_t>> residuals = documentedResiduals(part);
+    size_t n = 0;
+    std::array<int64_t, 3> previous{ 0, 0, 0 };
+    for (size_t c = 0; c < atlas.charts.size(); ++c)
+    {
+      const int32_t d = atlas.charts[c].maxLevel - static_cast<int32_t>(k), big = 1 << d;
+      for (int32_t j = 0; d >= 0 && j <= big; ++j)
+      {
+        for (int32_t i = 0; i + j <= big; ++i)
+        {
+          const int32_t ci = static_cast<int32_t>(c);
+          std::array<int64_t, 3>& code = codes[{ ci, d, i, j }];
+          if (d > 0 && i % 2 == 0 && j % 2 == 0)
+          {
+            code = codes.at({ ci, d - 1, i / 2, j / 2 });
+            continue;
+          }
+          if (a == 0)
+          {
+            // A position whose twin on the chart across its side came first is not stored.
+            const std::array<int32_t, 2> side = tc::gridSide(i, j, big);
+            if (side[0] >= 0)
+            {
+              const tc::AtlasChart& chart = atlas.charts[c];
+              const std::array<int32_t, 2> ij =
+                tc::sidePoint(chart.neighborSide[side[0]], big - side[1], big);
+              const auto twin = codes.find({ chart.neighborChart[side[0]], d, ij[0], ij[1] });
+              if (twin != codes.end())
+              {
+                code = twin->second;
+                previous = code;
+                ++twins;
+                continue;
+              }
+            }
+          }
+          std::array<int32_t, 4> ends = j % 2 == 0 ? std::array<int32_t, 4>{ i - 1, j, i + 1, j }
+            : i % 2 == 0                           ? std::array<int32_t, 4>{ i, j - 1, i, j + 1 }
+                         : std::array<int32_t, 4>{ i - 1, j + 1, i + 1, j - 1 };
+          for (size_t x = 0; x < comps; ++x)
+          {
+            int64_t predicted = previous[x];
+            if (d > 0)
+            {
+              const int64_t sum = codes.at({ ci, d - 1, ends[0] / 2, ends[1] / 2 })[x] +
+                codes.at({ ci, d - 1, ends[2] / 2, ends[3] / 2 })[x];
+              predicted = static_cast<int64_t>(std::floor(static_cast<double>(sum) / 2.0));
+            }
+            const uint32_t z = residuals[x][n];
+            code[x] = predicted + ((z & 1u) ? -static_cast<int64_t>(z / 2) - 1 : int64_t(z / 2));
+            previous[x] = code[x];
+          }
+          ++n;
+        }
+      }
+    }
+  }
+  // Shared sides: every position sample on one has a twin, stored once.
+  EXPECT_EQ(twins > 0, a == 0);
+  return codes;
+}
+} // namespace
+
+TEST_F(AtlasIo, Version4FollowsTheDocumentedLayout)
+{
+  const tc::Atlas& atlas = latticeAtlas();
+  const std::string path = file("lattice.exr");
+  tc::writeAtlas(atlas, path);
+  expectBitIdentical(atlas, tc::readAtlas(path));
+
+  const std::vector<ExrPart> parts = loadParts(path);
+  const Json metadata = metadataOf(parts);
+  EXPECT_EQ(metadata["version"], 4);
+  const Json& lattice = metadata["lattice"];
+  // The step: the largest power of two <= the diagonal * 2^-16; 12-bit normals.
+  EXPECT_EQ(lattice["stepExponent"], std::ilogb(atlas.inputDiagonal) - 16);
+  EXPECT_EQ(lattice["normalBits"], 12);
+  for (const ExrPart& part : parts)
+  {
+    const std::string name = part.header.name();
+    const bool position = name.rfind("Position.", 0) == 0;
+    const bool normal = name.rfind("Normal.", 0) == 0;
+    std::vector<std::string> channels;
+    for (auto it = part.header.channels().begin(); it != part.header.channels().end(); ++it)
+    {
+      channels.push_back(it.name());
+      EXPECT_EQ(it.channel().type, position || normal ? Imf::UINT : Imf::FLOAT) << name;
+    }
+    if (position || normal)
+    {
+      const std::vector<std::string> expected =
+        position ? std::vector<std::string>{ "X", "Y", "Z" } : std::vector<std::string>{ "U", "V" };
+      EXPECT_EQ(channels, expected) << name;
+    }
+  }
+
+  // Every sample's codes, decoded by the document alone, give the atlas's floats bit for bit
+  // and lie in the lattice's range.
+  for (size_t a = 0; a < 2; ++a)
+  {
+    const auto codes = documentedCodes(atlas, parts, a);
+    size_t checked = 0;
+    for (const auto& [sample, code] : codes)
+    {
+      const float* expected =
+        tc::atlasSample(atlas, sample[0], static_cast<int32_t>(a), sample[1], sample[2], sample[3]);
+      std::array<float, 3> decoded{};
+      if (a == 0)
+      {
+        for (int x = 0; x < 3; ++x)
+        {
+          EXPECT_GE(code[x], 0);
+          EXPECT_LE(code[x], lattice["extent"][x].get<int64_t>());
+          decoded[x] = documentedCoordinate(lattice, x, code[x]);
+        }
+      }
+      else
+      {
+        EXPECT_LE(std::abs(code[0]), 2047);
+        EXPECT_LE(std::abs(code[1]), 2047);
+        decoded = documentedNormal(12, code[0], code[1]);
+      }
+      for (int x = 0; x < 3; ++x)
+      {
+        ASSERT_EQ(bitsOf(decoded[x]), bitsOf(expected[x]))
+          << "attribute " << a << " chart " << sample[0] << " level " << sample[1] << " ("
+          << sample[2] << ", " << sample[3] << ")";
+      }
+      ++checked;
+    }
+    // Every sample of every level of every chart.
+    size_t samples = 0;
+    for (const tc::AtlasChart& chart : atlas.charts)
+    {
+      for (int32_t d = 0; d <= chart.maxLevel; ++d)
+      {
+        samples += static_cast<size_t>(tc::gridVertexCount(d));
+      }
+    }
+    EXPECT_EQ(checked, samples);
+  }
+}
+
+TEST_F(AtlasIo, AnyNormalOfTheLatticeIsStoredAsItsCode)
+{
+  // Normals from all over the code square (its edges and corners, where the octahedral map
+  // folds, the axes, and codes at random), a function of the position so that shared samples
+  // stay identical: the writer finds the code of each, so the file is version 4 and exact.
+  tc::Atlas atlas = latticeAtlas();
+  const int32_t limit = 2047;
+  const int32_t special[] = { -limit, -limit + 1, -1, 0, 1, limit - 1, limit };
+  for (tc::AtlasImage& image : atlas.images)
+  {
+    for (size_t t = 0; t < image.data[0].size() / 3; ++t)
+    {
+      const float* p = &image.data[0][3 * t];
+      const uint64_t h = hashOf({ bitsOf(p[0]), bitsOf(p[1]), bitsOf(p[2]) });
+      int32_t u = static_cast<int32_t>(h % (2 * limit + 1)) - limit;
+      int32_t v = static_cast<int32_t>((h >> 20) % (2 * limit + 1)) - limit;
+      if ((h >> 40) % 2 == 0)
+      {
+        u = special[(h >> 41) % 7];
+      }
+      if ((h >> 44) % 2 == 0)
+      {
+        v =
+          (h >> 45) % 2 ? special[(h >> 46) % 7] : (limit - std::abs(u)) * ((h >> 49) % 2 ? 1 : -1);
+      }
+      const std::array<float, 3> n = documentedNormal(12, u, v);
+      if (bitsOf(p[0]) | bitsOf(p[1]) | bitsOf(p[2]))
+      {
+        std::copy(n.begin(), n.end(), &image.data[1][3 * t]);
+      }
+    }
+  }
+  ASSERT_NO_THROW(tc::validateAtlas(atlas));
+  const std::string path = file("normals.exr");
+  tc::writeAtlas(atlas, path);
+  EXPECT_EQ(metadataOf(loadParts(path))["version"], 4);
+  expectBitIdentical(atlas, tc::readAtlas(path));
+
+  // One normal a float step off its code, or one position off the lattice: version 3, exact.
+  for (size_t a = 0; a < 2; ++a)
+  {
+    tc::Atlas off = latticeAtlas();
+    float* value = const_cast<float*>(
+      tc::atlasSample(off, 0, static_cast<int32_t>(a), off.charts[0].maxLevel, 1, 1));
+    value[1] = std::nextafter(value[1], HUGE_VALF);
+    tc::writeAtlas(off, path);
+    EXPECT_EQ(metadataOf(loadParts(path))["version"], 3) << "attribute " << a;
+    expectBitIdentical(off, tc::readAtlas(path));
+  }
+}
+
+TEST_F(AtlasIo, RefusesDamagedVersion4Files)
+{
+  const std::string good = file("good4.exr");
+  const std::string bad = file("bad4.exr");
+  tc::writeAtlas(latticeAtlas(), good);
+  const auto damaged = [&](const std::function<void(std::vector<ExrPart>&)>& edit)
+  {
+    std::vector<ExrPart> parts = loadParts(good);
+    edit(parts);
+    saveParts(bad, parts);
+    return readError(bad);
+  };
+  const auto metadataDamaged = [&](const std::function<void(Json&)>& edit)
+  {
+    return damaged(
+      [&edit](std::vector<ExrPart>& parts)
+      {
+        Json metadata = metadataOf(parts);
+        edit(metadata);
+        setMetadata(parts, metadata.dump());
+      });
+  };
+  // A bad frame.
+  std::string error = metadataDamaged([](Json& m) { m.erase("lattice"); });
+  EXPECT_TRUE(mentions(error, "lacks the root.lattice")) << error;
+  EXPECT_TRUE(mentions(error, bad)) << error;
+  error = metadataDamaged([](Json& m) { m["lattice"]["extent"][1] = -1; });
+  EXPECT_TRUE(mentions(error, "lattice.extent[1] = -1, out of range")) << error;
+  error = metadataDamaged([](Json& m) { m["lattice"]["stepExponent"] = 5000; });
+  EXPECT_TRUE(mentions(error, "lattice.stepExponent = 5000, out of range")) << error;
+  error = metadataDamaged([](Json& m) { m["lattice"]["normalBits"] = 40; });
+  EXPECT_TRUE(mentions(error, "lattice.normalBits = 40, out of range")) << error;
+  error = metadataDamaged([](Json& m) { m["lattice"]["origin"] = { 1, 2 }; });
+  EXPECT_TRUE(mentions(error, "lattice.origin that is not an array of 3 elements")) << error;
+  // A smaller frame than the codes need: they decode outside it.
+  error = metadataDamaged([](Json& m) { m["lattice"]["extent"][0] = 10; });
+  EXPECT_TRUE(mentions(error, "outside the lattice's 0 .. 10")) << error;
+  error = metadataDamaged([](Json& m) { m["images"][0]["texels"] = "all"; });
+  EXPECT_TRUE(mentions(error, "which version 4 does not write")) << error;
+
+  // Damaged parts: codes as floats, residuals that leave the lattice, a changed residual.
+  error = damaged(
+    [](std::vector<ExrPart>& parts)
+    {
+      ExrPart& part = partNamed(parts, "Normal.0");
+      part.header.channels() = Imf::ChannelList();
+      for (const auto& [name, codes] : part.codes)
+      {
+        part.header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        part.channels[name].assign(codes.size(), 0.0f);
+      }
+      part.codes.clear();
+    });
+  EXPECT_TRUE(
+    mentions(error, "part 'Normal.0' channel 'U' is not full-resolution 32-bit unsigned integer"))
+    << error;
+  for (const char* name : { "Position.1", "Normal.2" })
+  {
+    error = damaged(
+      [name](std::vector<ExrPart>& parts)
+      {
+        for (auto& [channel, codes] : partNamed(parts, name).codes)
+        {
+          std::fill(codes.begin(), codes.end(), 0xffffffffu);
+        }
+      });
+    EXPECT_TRUE(mentions(error, std::string("part '") + name + "' holds a code of")) << error;
+    EXPECT_TRUE(mentions(error, "outside the lattice")) << error;
+  }
+  error = damaged(
+    [](std::vector<ExrPart>& parts) { partNamed(parts, "Position.0").codes["Y"][3] ^= 1u; });
+  EXPECT_TRUE(mentions(error, "the texels of part 'Position.0' do not match their checksum"))
+    << error;
+}
+
+TEST_F(AtlasIo, FlippedBytesOfVersion4AreRefusedOrHarmless)
+{
+  const tc::Atlas& atlas = latticeAtlas();
+  const std::string good = file("good4.exr");
+  tc::writeAtlas(atlas, good);
+  ASSERT_EQ(metadataOf(loadParts(good))["version"], 4);
+  const std::string bytes = fileBytes(good);
+  const std::string bad = file("flipped4.exr");
+  size_t refused = 0, tried = 0;
+  for (size_t at = 0; at < bytes.size(); at += 1 + bytes.size() / 151, ++tried)
+  {
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x5a);
+    writeBytes(bad, damaged);
+    // Never silently different (nor a crash): a refusal naming the file or the same atlas.
+    try
+    {
+      const tc::Atlas read = tc::readAtlas(bad);
+      SCOPED_TRACE("byte " + std::to_string(at) + " flipped and read");
+      expectBitIdentical(atlas, read);
+    }
+    catch (const tc::InputError& error)
+    {
+      ++refused;
+      EXPECT_TRUE(mentions(error.what(), bad)) << error.what();
+    }
+  }
+  std::cout << "[ figures  ] version 4: " << refused << " of " << tried
+            << " single-byte flips refused (" << bytes.size() << "-byte file)\n";
+  EXPECT_GT(refused, tried / 2);
+}
+
+TEST_F(AtlasIo, Version4ReportsProgressAndHonoursAbort)
+{
+  const tc::Atlas& atlas = latticeAtlas();
+  const std::string path = file("progress4.exr");
+  const auto stopHalfWay = [](double f) { return f < 0.5; };
+  // One report per part at least: 2 attributes x 4 or more images.
+  tctest::expectProgressAndAbort(
+    [&](const tc::Progress& progress) { tc::writeAtlas(atlas, path, progress); }, 8, stopHalfWay);
+  EXPECT_EQ(listing(), std::vector<std::string>{ "progress4.exr" });
+  tctest::expectProgressAndAbort([&](const tc::Progress& progress)
+    { expectBitIdentical(atlas, tc::readAtlas(path, progress)); },
+    8, stopHalfWay);
 }

@@ -2,6 +2,7 @@
 #include "tc/gim/geometry_images.h"
 
 #include "gim/atlas_packing.h"
+#include "gim/atlas_quantization.h"
 #include "gim/chart_box.h"
 #include "gim/chart_grid.h"
 #include "gim/geometry_images_input.h"
@@ -336,6 +337,10 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   // every level of every chart copied into its texels.
   packAtlas(level, S, atlas);
   writeImages(grids, S, atlas, progress.sub(0.9, 1.0));
+
+  // 8. Positions and normals onto the lattice the atlas file stores exactly (one frame for all
+  // charts, so shared samples stay bit-identical).
+  detail::snapToLattice(atlas);
   progress.report(1.0);
   return atlas;
 }

@@ -227,7 +227,7 @@ Json checkedJson(const std::string& path, const StoredMetadata& stored)
       std::to_string(version->get<int64_t>()) + " but this TriChart reads versions up to " +
       std::to_string(kAtlasFileVersion) + "; update TriChart to read it");
   }
-  // Version 1 stored the text plainly, versions 2 and 3 compressed: anything else is not our
+  // Version 1 stored the text plainly, versions 2 to 4 compressed: anything else is not our
   // writer's.
   if (stored.compressed != (version->get<int64_t>() >= 2))
   {
@@ -301,6 +301,23 @@ void parseImages(const MetadataReader& in, const Json& root, AtlasMetadata& out)
     }
     out.atlas.images.push_back(std::move(image));
   }
+}
+
+/// "lattice" (version 4): the frame of the position codes and the bits of the normal codes.
+AtlasLattice parseLattice(const MetadataReader& in, const Json& root)
+{
+  const Json& lattice = in.member(root, "lattice", "the root");
+  AtlasLattice out;
+  out.frame.stepExponent = static_cast<int32_t>(
+    in.integer(in.member(lattice, "stepExponent", "lattice"), -1100, 1100, "lattice.stepExponent"));
+  // Codes and origins within 2^52 steps: every origin + code is an exact double.
+  out.frame.origin = in.integers<int64_t, 3>(in.member(lattice, "origin", "lattice"),
+    -(int64_t(1) << 52), int64_t(1) << 52, "lattice.origin");
+  out.frame.extent = in.integers<int64_t, 3>(
+    in.member(lattice, "extent", "lattice"), 0, kMaxPositionExtent, "lattice.extent");
+  out.normalBits = static_cast<int32_t>(
+    in.integer(in.member(lattice, "normalBits", "lattice"), 2, 24, "lattice.normalBits"));
+  return out;
 }
 
 /// Chart c of "charts".
@@ -388,16 +405,22 @@ void checkWritable(const Atlas& atlas, const std::string& path)
   }
 }
 
-std::string metadataJson(
-  const Atlas& atlas, const AtlasChecksums& crcs, const std::vector<uint8_t>& compact)
+std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
+  const std::vector<uint8_t>& compact, const AtlasLattice* lattice)
 {
   Json root;
   root["format"] = kFormatName;
-  root["version"] = kAtlasFileVersion;
+  root["version"] = lattice ? kAtlasFileVersion : kAtlasFloatVersion;
   root["source"] = atlas.source;
   root["inputPoints"] = atlas.inputPoints;
   root["inputTriangles"] = atlas.inputTriangles;
   root["inputDiagonal"] = encodeDouble(atlas.inputDiagonal);
+  if (lattice)
+  {
+    root["lattice"] = { { "stepExponent", lattice->frame.stepExponent },
+      { "origin", lattice->frame.origin }, { "extent", lattice->frame.extent },
+      { "normalBits", lattice->normalBits } };
+  }
   root["attributes"] = Json::array();
   for (const AtlasAttribute& attribute : atlas.attributes)
   {
@@ -544,6 +567,19 @@ AtlasMetadata parseMetadata(const std::string& path, const StoredMetadata& store
   // allocated from them.
   parseAttributes(in, root, atlas);
   parseImages(in, root, out);
+  if (root["version"].get<int64_t>() >= 4)
+  {
+    out.lattice = parseLattice(in, root);
+    for (size_t k = 0; k < out.compact.size(); ++k)
+    {
+      if (!out.compact[k])
+      {
+        in.fail("has images[" + std::to_string(k) +
+          "].texels = \"all\", which version 4 does not write (its codes need every image "
+          "compact)");
+      }
+    }
+  }
   const Json& charts = in.member(root, "charts", "the root");
   if (!charts.is_array())
   {

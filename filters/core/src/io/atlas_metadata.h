@@ -5,6 +5,7 @@
 /// docs/atlas-format.md lists every field.
 #pragma once
 
+#include "io/atlas_codes.h"
 #include "tc/gim/atlas.h"
 
 #include <cstddef>
@@ -36,11 +37,12 @@ using AtlasChecksums = std::vector<std::vector<uint32_t>>;
 void checkWritable(const Atlas& atlas, const std::string& path);
 
 /// The metadata JSON text of `atlas` (everything but the texels), bytes of `source` that are
-/// not UTF-8 written as U+FFFD.
+/// not UTF-8 written as U+FFFD: version 4 with `lattice`, else version 3.
 /// @param[in] crcs     per image, per attribute
 /// @param[in] compact  per image: 1 if its parts hold only its new texels
-std::string metadataJson(
-  const Atlas& atlas, const AtlasChecksums& crcs, const std::vector<uint8_t>& compact);
+/// @param[in] lattice  the lattice Position and Normal are coded on, or null (floats)
+std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
+  const std::vector<uint8_t>& compact, const AtlasLattice* lattice);
 
 /// The metadata JSON text deflated for "trichartAtlasZ" (zlib stream, best compression).
 /// @throws InputError  when the text or its compressed form exceed what an OpenEXR attribute
@@ -71,9 +73,10 @@ void checkMetadata(const std::string& path, const StoredMetadata& stored);
 /// metadata.
 struct AtlasMetadata
 {
-  Atlas atlas;                  ///< images with width and height only, no data
-  AtlasChecksums crcs;          ///< per image, per attribute
-  std::vector<uint8_t> compact; ///< per image: 1 if its parts hold only its new texels
+  Atlas atlas;                         ///< images with width and height only, no data
+  AtlasChecksums crcs;                 ///< per image, per attribute
+  std::vector<uint8_t> compact;        ///< per image: 1 if its parts hold only its new texels
+  std::optional<AtlasLattice> lattice; ///< version 4: Position and Normal are coded on it
 };
 
 /// checkMetadata, then every field parsed; counts and sizes within validateAtlas's limits

@@ -2,22 +2,28 @@
 /// @file atlas_io.h
 /// The atlas file: a tc::Atlas (atlas.h) as one OpenEXR multi-part file, read back bit for bit.
 /// A part per attribute and image (coarsest first, a finer image storing only the samples the
-/// coarser ones lack), 32-bit float channels, and a zlib-compressed JSON chart table with
-/// CRC-32 checksums of the table and of every image. docs/atlas-format.md describes the format
-/// (version 3, and the versions 1 and 2 it still reads), how the reader validates a file and
-/// how the writer replaces one. OpenEXR because it stores float32 images losslessly and any
-/// image tool opens them.
+/// coarser ones lack), Position and Normal as integer lattice codes predicted from the coarser
+/// image (version 4; version 3 when the atlas's values lie on no lattice), other attributes as
+/// 32-bit floats, and a zlib-compressed JSON chart table with CRC-32 checksums of the table and
+/// of every image. docs/atlas-format.md describes the format (versions 4 and 3, and the versions
+/// 1 and 2 it still reads), how the reader validates a file and how the writer replaces one.
+/// OpenEXR because it stores float32 and integer images losslessly and any image tool opens
+/// them.
 #pragma once
 
-#include "tc/gim/atlas.h"
 #include "tc/common/progress.h"
+#include "tc/gim/atlas.h"
 
 #include <string>
 
 namespace tc
 {
-/// Version of the atlas file format that writeAtlas writes; readAtlas reads it and older ones.
-constexpr int kAtlasFileVersion = 3;
+/// Version of the atlas file format that writeAtlas writes (Position and Normal as lattice
+/// codes) whenever every position and normal decodes exactly from its code, as in every atlas
+/// the pipeline builds; readAtlas reads it and older ones.
+constexpr int kAtlasFileVersion = 4;
+/// The version writeAtlas writes for any other atlas: every attribute as float32.
+constexpr int kAtlasFloatVersion = 3;
 
 /// Writes `atlas` to `path` (replaced if it exists). The file is written to a temporary file
 /// beside the target and renamed over it only when complete and flushed to disk: on any error or
