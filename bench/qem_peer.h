@@ -13,9 +13,14 @@
 namespace tcbench
 {
 /// meshoptimizer's quadric simplification of `mesh` to at most `targetTriangles` triangles,
-/// returned as a mesh of the vertices it still uses.
+/// returned as a mesh of the vertices it still uses; `mesh` itself for a target at or above
+/// its count (meshopt_simplify requires a target no larger than its input).
 inline tc::TriMesh SimplifyQem(const tc::TriMesh& mesh, int64_t targetTriangles)
 {
+  if (targetTriangles >= mesh.numTriangles())
+  {
+    return mesh;
+  }
   std::vector<float> positions(mesh.points.begin(), mesh.points.end());
   std::vector<unsigned int> indices(mesh.triangles.begin(), mesh.triangles.end());
   std::vector<unsigned int> kept(indices.size());
