@@ -20,6 +20,10 @@ constexpr double kExactGraph = 1600.0;          ///< the exact sparse graph and 
 constexpr double kNystrom = 500.0;              ///< the Nystrom blocks and their products
 constexpr double kKeptAfterPaths = 550.0;       ///< every stage's mesh, up to the patches
 constexpr double kPerSample = 34.0;             ///< a grid sample: attributes, fit, error
+/// A grid sample under an error target: the measuring rounds sample the raised charts again
+/// (the grids they replace stay resident in the allocator) and the finest levels may hold every
+/// measured sample, which the atlas and its file then copy.
+constexpr double kPerTargetSample = 136.0;
 /// Charts are at most the larger of the base target and one per this many input triangles
 /// (an upper guess for the maxLevel cap: simplification stops above the target on detailed
 /// meshes when BaseComplexOptions::maxError holds it back).
@@ -63,7 +67,8 @@ BuildMemoryEstimate estimateBuildMemory(const BuildMemoryRequest& r)
     static_cast<double>(e.charts) * static_cast<double>(gridVertexCount(r.maxLevel));
   const double samples = std::min(measured, capped);
   e.samples = saturated(samples);
-  e.images = saturated(triangles * kKeptAfterPaths + samples * kPerSample);
+  e.images = saturated(
+    triangles * kKeptAfterPaths + samples * (r.errorTarget > 0.0 ? kPerTargetSample : kPerSample));
   return e;
 }
 } // namespace tc

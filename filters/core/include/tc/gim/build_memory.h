@@ -10,7 +10,9 @@
 ///   their products) above it;
 /// - geometry images: the meshes kept after path tracing plus the grids the error rule samples,
 ///   at most 16 times the budget (kErrorRuleLevelsAbove levels above the area rule's), with an
-///   error target at least kMinTargetSamples, and at most every chart at maxLevel.
+///   error target at least kMinTargetSamples (and more bytes per sample: its measuring rounds
+///   sample charts again, and its finest levels may hold every sample), and at most every chart
+///   at maxLevel.
 /// The coefficients are bytes per triangle or per sample of peak resident memory measured on the
 /// shared meshes (bench/build_memory.sh prints estimate and measurement); the estimate is meant
 /// to be a little above the measurement, never far below it.
