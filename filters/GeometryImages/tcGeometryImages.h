@@ -8,7 +8,7 @@
  * three paths fixed on the sides by arc length, then reweighted to lower its stretch, see
  * SetStretchIterations) and resampled on grids of 2^d + 1 samples per
  * side for d = 0 .. d_max, d_max following the patch's curvature-weighted area under a total
- * sample budget (or, by default, by measured error down to an error target, see SetLevelRule
+ * sample budget (or by measured error under it, or down to an error target: see SetLevelRule
  * and SetErrorTarget). Shared sides are sampled once
  * along their path, so neighbouring charts hold bit-identical samples there and stitch without
  * cracks. Two charts of close resolution share each (2^dh + 2) x (2^dh + 1) rectangle. Every chart
@@ -49,7 +49,8 @@ public:
 
   ///@{
   /// Total samples over all charts at their finest level; 0: as many as the ErrorTarget needs
-  /// (up to 16 times the input's points, or 2^20 samples if more), or with no target the input's point count.
+  /// (up to 16 times the input's points, or 2^20 samples if more), or with no target the
+  /// input's point count.
   vtkSetClampMacro(SampleBudget, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(SampleBudget, vtkIdType);
   ///@}

@@ -695,22 +695,8 @@ int64_t oneFaceZigZags(
   const tc::TriMesh& mesh, const std::vector<int32_t>& clusterId, double creaseDegrees = 30.0)
 {
   const EdgeSet boundary = labelBoundary(mesh, clusterId);
-  std::map<std::pair<int32_t, int32_t>, std::vector<int64_t>> edgeFaces;
-  for (int64_t f = 0; f < mesh.numTriangles(); ++f)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      edgeFaces[key(mesh.triangles[3 * f + k], mesh.triangles[3 * f + (k + 1) % 3])].push_back(f);
-    }
-  }
-  const double pi = 3.14159265358979323846;
-  auto dihedral = [&](int32_t a, int32_t b)
-  {
-    const std::vector<int64_t>& two = edgeFaces.at(key(a, b));
-    const auto n0 = faceNormal(mesh, two[0]), n1 = faceNormal(mesh, two[1]);
-    const double c = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2];
-    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / pi;
-  };
+  const auto degrees = edgeDegrees(mesh);
+  auto dihedral = [&](int32_t a, int32_t b) { return degrees.at(key(a, b)); };
   std::map<int32_t, std::vector<int32_t>> around;
   for (const auto& e : boundary)
   {

@@ -58,8 +58,9 @@ BuildMemoryEstimate estimateBuildMemory(const BuildMemoryRequest& r)
   e.charts =
     std::max<int64_t>(std::max<int64_t>(r.targetFaces, 1), r.triangles / kTrianglesPerChart);
   const double budget = static_cast<double>(r.sampleBudget > 0 ? r.sampleBudget : r.points);
+  const bool target = r.errorTarget > 0.0;
   double measured = budget * static_cast<double>(int64_t(1) << (2 * kErrorRuleLevelsAbove));
-  if (r.errorTarget > 0.0)
+  if (target)
   {
     measured = std::max(measured, static_cast<double>(kMinTargetSamples));
   }
@@ -67,8 +68,8 @@ BuildMemoryEstimate estimateBuildMemory(const BuildMemoryRequest& r)
     static_cast<double>(e.charts) * static_cast<double>(gridVertexCount(r.maxLevel));
   const double samples = std::min(measured, capped);
   e.samples = saturated(samples);
-  e.images = saturated(
-    triangles * kKeptAfterPaths + samples * (r.errorTarget > 0.0 ? kPerTargetSample : kPerSample));
+  e.images =
+    saturated(triangles * kKeptAfterPaths + samples * (target ? kPerTargetSample : kPerSample));
   return e;
 }
 } // namespace tc

@@ -122,20 +122,19 @@ void sampleCharts(const SamplingInput& in, const std::vector<PatchParameterizati
   const int32_t nc = in.L.numCharts;
   const TriMesh& mesh = in.patches.mesh;
   grids.resize(nc);
-  if (creases.empty())
-  {
-    creases.resize(nc);
-    for (int32_t c = 0; c < nc; ++c)
-    {
-      creases[c] = patchCreases(mesh, param[c]);
-    }
-  }
+  // The first call samples every chart: its creases are found then, in the same loop.
+  const bool first = creases.empty();
+  creases.resize(nc);
   const int64_t n = static_cast<int64_t>(which.size());
   parallel_for(
     n,
     [&](int64_t k)
     {
       const int32_t c = which[static_cast<size_t>(k)];
+      if (first)
+      {
+        creases[c] = patchCreases(mesh, param[c]);
+      }
       grids[c] = sampleChartGrid(in, param[c], charts[c], c, sampled[c], paths);
       charts[c].levelError = chartLevelErrors(mesh, param[c], grids[c], creases[c], sampled[c]);
     },
@@ -182,8 +181,8 @@ bool resampleRaised(const SamplingInput& in, const std::vector<PatchParameteriza
   {
     return false;
   }
-  samplePaths(in, sampled, selected(L.numEdges, edge), paths, progress.sub(0.0, 0.0));
-  sampleCharts(in, param, sampled, paths, which, charts, grids, creases, progress);
+  samplePaths(in, sampled, selected(L.numEdges, edge), paths, progress.sub(0.0, 0.1));
+  sampleCharts(in, param, sampled, paths, which, charts, grids, creases, progress.sub(0.1, 1.0));
   return true;
 }
 
@@ -198,7 +197,7 @@ void sampleAndMeasure(const SamplingInput& in, const std::vector<PatchParameteri
   samplePaths(in, sampled, selected(L.numEdges, {}), paths, progress.sub(0.0, 0.05));
   sampleCharts(in, param, sampled, paths, selected(L.numCharts, {}), charts, grids, creases,
     progress.sub(0.05, 0.6));
-  if (o.levelRule != LevelRule::Error || !(o.errorTarget > 0.0))
+  if (!stopsOnTarget(o))
   {
     return;
   }

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <utility>
 
 namespace tc::detail::geometry_images
@@ -23,7 +22,7 @@ SampleBudgets sampleBudgets(
   SampleBudgets b;
   b.area = options.sampleBudget > 0 ? options.sampleBudget : std::max(minimum, inputPoints);
   b.measured = b.area << (2 * kErrorRuleLevelsAbove);
-  const bool byTarget = options.levelRule == LevelRule::Error && options.errorTarget > 0.0;
+  const bool byTarget = stopsOnTarget(options);
   if (byTarget)
   {
     b.measured = std::max(b.measured, kMinTargetSamples);
@@ -88,7 +87,7 @@ std::vector<int32_t> sampledLevels(
   std::vector<int32_t> sampled = areaRuleLevels(weightedArea, o, budget);
   // With a target the measuring starts at the area rule's levels and rises where the error
   // is (raiseMeasured), so the measured budget is not spent on charts already below it.
-  if (o.levelRule == LevelRule::Error && !(o.errorTarget > 0.0))
+  if (o.levelRule == LevelRule::Error && !stopsOnTarget(o))
   {
     for (int32_t& d : sampled)
     {
@@ -169,9 +168,7 @@ std::vector<uint8_t> raiseMeasured(const std::vector<AtlasChart>& charts,
   for (int32_t c = 0; c < n; ++c)
   {
     total += gridVertexCount(sampled[c]);
-    const std::vector<double>& error = charts[c].levelError;
-    const size_t d = static_cast<size_t>(sampled[c]);
-    const double e = error[d];
+    const double e = charts[c].levelError[static_cast<size_t>(sampled[c])];
     if (e > target && sampled[c] < o.maxLevel)
     {
       above.emplace_back(-e, c);

@@ -12,6 +12,12 @@
 
 namespace tc::detail::geometry_images
 {
+/// Whether the error rule stops on options.errorTarget (the Error rule with a target > 0).
+inline bool stopsOnTarget(const GeometryImageOptions& o)
+{
+  return o.levelRule == LevelRule::Error && o.errorTarget > 0.0;
+}
+
 /// The sample counts of the level rules (see GeometryImageOptions::sampleBudget).
 struct SampleBudgets
 {
