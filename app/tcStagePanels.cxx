@@ -90,6 +90,12 @@ tcParameterPanel* tcStagePanels::Refinement(tcFeatureRefinement* f, QWidget* par
       f->GetCreaseAngle(), [f](double v) { f->SetCreaseAngle(v); })
     ->setToolTip("Dihedral angle (degrees) of a crease edge, which straightening never trades for "
                  "a smoother one");
+  QDoubleSpinBox* creaseLines = panel->AddDouble("CreaseLineAngle", f->GetCreaseLineAngleMinValue(),
+    f->GetCreaseLineAngleMaxValue(), 1, 5.0, f->GetCreaseLineAngle(),
+    [f](double v) { f->SetCreaseLineAngle(v); });
+  creaseLines->setSpecialValueText("off");
+  creaseLines->setToolTip("Crease chains whose edges all bend more than this many degrees join "
+                          "the feature lines where no cluster boundary follows them; 0: off");
   return panel;
 }
 
@@ -106,13 +112,20 @@ tcParameterPanel* tcStagePanels::BaseComplex(tcBaseComplex* f, QWidget* parent)
 tcParameterPanel* tcStagePanels::GeometryImages(tcGeometryImages* g, QWidget* parent)
 {
   auto* panel = new tcParameterPanel(tcParameterPanel::Apply, parent);
+  QDoubleSpinBox* target =
+    panel->AddDouble("ErrorTarget", g->GetErrorTargetMinValue(), g->GetErrorTargetMaxValue(), 5,
+      0.0001, g->GetErrorTarget(), [g](double v) { g->SetErrorTarget(v); });
+  target->setSpecialValueText("none");
+  target->setToolTip("Each chart rises until its measured error is below this fraction of the "
+                     "diagonal; none: the SampleBudget alone decides");
   QSpinBox* budget = panel->AddInt("SampleBudget", static_cast<int>(g->GetSampleBudgetMinValue()),
     static_cast<int>(std::min<vtkIdType>(g->GetSampleBudgetMaxValue(), 1000000000)),
     static_cast<int>(g->GetSampleBudget()), [g](int v) { g->SetSampleBudget(v); });
   budget->setSingleStep(1000);
-  budget->setSpecialValueText("input points");
-  budget->setToolTip(
-    "Total samples over all charts at their finest level; 0 uses the input's point count");
+  budget->setSpecialValueText("automatic");
+  budget->setToolTip("Total samples over all charts at their finest level; automatic: as many "
+                     "as the ErrorTarget needs (up to 16 times the input's points), or with no "
+                     "target the input's point count");
   panel
     ->AddInt("MinLevel", g->GetMinLevelMinValue(), g->GetMinLevelMaxValue(), g->GetMinLevel(),
       [g](int v) { g->SetMinLevel(v); })

@@ -91,7 +91,7 @@ void tcViewerWindow::SetBatchMode(bool batch)
 void tcViewerWindow::BuildUi()
 {
   this->setWindowTitle("TriChart Viewer");
-  this->resize(1100, 750);
+  this->resize(1100, 780);
   this->BuildView();
 
   // Pipeline panel: stages, their parameters, apply, display options, summary.

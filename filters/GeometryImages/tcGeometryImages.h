@@ -42,15 +42,15 @@ public:
   ///@{
   /// The Error level rule's goal, a fraction of the input's bounding-box diagonal: a chart
   /// rises to finer levels while its measured error is above it (up to MaxLevel and the
-  /// budget), and no further. 0: no goal, the budget alone decides.
+  /// budget), and no further. Default 7e-4 (tc::kDefaultErrorTarget). 0: no goal, the budget
+  /// alone decides.
   vtkSetClampMacro(ErrorTarget, double, 0.0, 0.5);
   vtkGetMacro(ErrorTarget, double);
   ///@}
 
   ///@{
   /// Total samples over all charts at their finest level; 0: as many as the ErrorTarget needs
-  /// (up to 16 times the input's points, or 2^20 samples if more), or with no target the
-  /// input's point count.
+  /// (up to 16 times the input's points), or with no target the input's point count.
   vtkSetClampMacro(SampleBudget, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(SampleBudget, vtkIdType);
   ///@}

@@ -31,11 +31,11 @@ public:
   static void GetMeshFileCounts(const char* fileName, vtkTypeInt64 counts[2]);
 
   /// The estimated peak memory in bytes of the static pipeline on a mesh of these counts
-  /// (sampleBudget 0: points; errorTarget as tcGeometryImages's), above what the process holds
+  /// (sampleBudget and errorTarget as tcGeometryImages's), above what the process holds
   /// before; -1 for negative counts or a maxLevel outside 0 .. 12.
   static vtkTypeInt64 EstimateBuildMemory(vtkTypeInt64 points, vtkTypeInt64 triangles,
     vtkTypeInt64 sampleBudget, int maxLevel, vtkTypeInt64 targetFaces,
-    vtkTypeInt64 nystromThreshold, double errorTarget = 0.0);
+    vtkTypeInt64 nystromThreshold, double errorTarget);
 
 protected:
   tcResources() = default;

@@ -289,8 +289,8 @@ def _add_build_parser(sub, d):
                         f"no target, the budget alone)")
     p.add_argument("--budget", type=int, default=d.images.GetSampleBudget(),
                    help="total samples at the finest levels (default: as many as the error "
-                        "target needs, up to 16 times the mesh's points or 2^20 samples; with "
-                        "--error-target 0 the mesh's point count)")
+                        "target needs, up to 16 times the mesh's points; with --error-target 0 "
+                        "the mesh's point count)")
     _add_repair_options(p, d)
     p.add_argument("--stretch-iterations", type=int, default=d.images.GetStretchIterations(),
                    help=f"stretch-reducing passes over each chart's mean-value map, "

@@ -316,7 +316,7 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     chart table and one image per mip step).
 
     Options: error_target (fraction of the diagonal that every chart's measured error is
-    brought below; 0, the default: none), sample_budget, min_level, max_level,
+    brought below; default 7e-4; 0: none, the budget alone), sample_budget, min_level, max_level,
     curvature_weight, level_rule (0: by curvature-weighted area, 1: by measured error, the
     default), stretch_iterations
     (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone).

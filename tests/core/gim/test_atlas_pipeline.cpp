@@ -43,9 +43,11 @@ const Built* builtFor(const std::string& name)
     slot = std::make_unique<Built>();
     slot->input = c;
     slot->patches = tc::tracePaths(c->mesh, c->result);
-    // Eight samples per input point: enough levels for neighbours 3+ levels apart even where
-    // the base complex keeps many small charts.
+    // Eight samples per input point, all spent (the budget rule, no error target): enough
+    // levels for neighbours 3+ levels apart even where the base complex keeps many small
+    // charts, and on flat ones.
     tc::GeometryImageOptions& options = slot->options;
+    options.errorTarget = 0.0;
     options.sampleBudget = std::max<int64_t>(
       8 * c->mesh.numPoints(), 400 * static_cast<int64_t>(c->result.baseTriangles.size() / 3));
     slot->atlas = tc::buildGeometryImages(slot->patches, c->result, {}, {}, {}, options);
@@ -192,7 +194,7 @@ TEST_P(AtlasOnMesh, RandomLevelsRebuildClosedManifoldsWithTheInputsEulerCharacte
 TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
 {
   // Four samples per input point (at least 45, level 3, per chart, so that the many small
-  // charts of some base complexes leave minLevel) under both level rules: the error rule
+  // charts of some base complexes leave minLevel) under both level rules, no target: the error rule
   // spends them on the charts with the largest measured levelError, so its largest error at
   // the finest level is not above the area rule's, and it stays within the budget.
   const tctest::PipelineCase& c = *B_->input;
@@ -204,6 +206,7 @@ TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
   for (const tc::LevelRule rule : { tc::LevelRule::Area, tc::LevelRule::Error })
   {
     tc::GeometryImageOptions options;
+    options.errorTarget = 0.0;
     options.sampleBudget = budget;
     options.levelRule = rule;
     const tc::Atlas atlas = tc::buildGeometryImages(B_->patches, c.result, {}, {}, {}, options);
@@ -227,10 +230,10 @@ TEST_P(AtlasOnMesh, ErrorRuleKeepsTheLargestFinestErrorAtOrBelowTheAreaRules)
 
 TEST_P(AtlasOnMesh, ErrorTargetRaisesEachChartToTheFirstLevelBelowIt)
 {
-  // A target of 1% of the diagonal (which no mesh here needs 16x its points for) and no budget (interpolated samples, whose levelError is
-  // the one the rule measured): every chart ends at the first level whose error is at or below
-  // the target, or at maxLevel; none stops above it while a level is left, and none is finer
-  // than the target needs.
+  // A target of 1% of the diagonal (which no mesh here needs 16x its points for) and no budget
+  // (interpolated samples, whose levelError is the one the rule measured): every chart ends at the
+  // first level whose error is at or below the target, or at maxLevel; none stops above it while a
+  // level is left, and none is finer than the target needs.
   const tctest::PipelineCase& c = *B_->input;
   tc::GeometryImageOptions options;
   options.errorTarget = 1e-2;

@@ -11,14 +11,16 @@
 
 namespace
 {
-tc::BuildMemoryRequest request(
-  int64_t points, int64_t triangles, int64_t budget = 0, int32_t maxLevel = 8)
+/// A request under the budget rule (errorTarget 0) unless a target is given.
+tc::BuildMemoryRequest request(int64_t points, int64_t triangles, int64_t budget = 0,
+  int32_t maxLevel = 8, double errorTarget = 0.0)
 {
   tc::BuildMemoryRequest r;
   r.points = points;
   r.triangles = triangles;
   r.sampleBudget = budget;
   r.maxLevel = maxLevel;
+  r.errorTarget = errorTarget;
   return r;
 }
 
@@ -26,8 +28,9 @@ constexpr double kMB = 1024.0 * 1024.0;
 } // namespace
 
 // The figures below are peak resident memory in MiB measured by /usr/bin/time -v for
-// `trichart build MESH -o OUT -q` (2 threads), less the 105 MiB that Python and VTK hold before
-// the build; the estimate must cover each, and by no more than half again to stay useful.
+// `trichart build MESH -o OUT -q --error-target 0` (2 threads), less the 105 MiB that Python and
+// VTK hold before the build; the estimate must cover each, and by no more than half again to stay
+// useful.
 TEST(BuildMemory, CoversTheMeasuredPeaksOfTheSharedMeshes)
 {
   struct Case
@@ -82,18 +85,17 @@ TEST(BuildMemory, TheLargestLevelCapsTheSamplesOfAHugeBudget)
   // Below the cap, the error rule measures up to two levels above the area rule: 16 x budget.
   EXPECT_EQ(tc::estimateBuildMemory(request(1839, 3674, 1000, 8)).samples, 16000);
   EXPECT_EQ(tc::estimateBuildMemory(request(1839, 3674, 0, 8)).samples, 16 * 1839);
-  // With an error target, at least kMinTargetSamples; 16 x budget when that is more.
-  tc::BuildMemoryRequest target = request(1839, 3674, 0, 8);
-  target.errorTarget = 1e-3;
-  EXPECT_EQ(tc::estimateBuildMemory(target).samples, tc::kMinTargetSamples);
-  target.sampleBudget = 100000;
-  EXPECT_EQ(tc::estimateBuildMemory(target).samples, 16 * 100000);
+  // An error target measures as many, each at more bytes.
+  const auto target = tc::estimateBuildMemory(request(1839, 3674, 0, 8, 1e-3));
+  EXPECT_EQ(target.samples, 16 * 1839);
+  EXPECT_GT(target.images, tc::estimateBuildMemory(request(1839, 3674, 0, 8)).images);
+  EXPECT_EQ(tc::BuildMemoryRequest{}.errorTarget, tc::GeometryImageOptions{}.errorTarget);
 }
 
-// Measured as above with --error-target 0.0007. The estimate must cover each; it may be up to
-// three times higher, since how many of the measuring's samples a target needs is not known
+// Measured as above at the defaults (the error target). The estimate must cover each; it may be up
+// to three times higher, since how many of the measuring's samples a target needs is not known
 // before the build.
-TEST(BuildMemory, CoversTheMeasuredPeaksUnderAnErrorTarget)
+TEST(BuildMemory, CoversTheMeasuredPeaksUnderTheDefaultErrorTarget)
 {
   struct Case
   {
@@ -101,19 +103,21 @@ TEST(BuildMemory, CoversTheMeasuredPeaksUnderAnErrorTarget)
     double measuredMB;
   };
   const Case cases[] = {
-    { 221, 446, 128 },     // cad/joint.off: 2^20 samples measured
-    { 1839, 3674, 75 },    // testing-data/meshes/bunny_npm.off
-    { 6475, 12946, 56 },   // testing-data/meshes/fandisk.off
-    { 4930, 9856, 50 },    // static_small/homer.off
-    { 26002, 52000, 82 },  // static_medium/armadillo.off
-    { 34835, 69666, 121 }, // static_medium/bunny_glmark2.obj
-    { 37706, 75408, 133 }, // static_medium/bunny00.off
+    { 221, 446, 11 },      // cad/joint.off
+    { 1839, 3674, 11 },    // testing-data/meshes/bunny_npm.off
+    { 6475, 12946, 26 },   // testing-data/meshes/fandisk.off
+    { 4930, 9856, 22 },    // static_small/homer.off
+    { 26002, 52000, 79 },  // static_medium/armadillo.off
+    { 34835, 69666, 120 }, // static_medium/bunny_glmark2.obj
+    { 37706, 75408, 132 }, // static_medium/bunny00.off
+    { 44460, 88928, 165 }, // static_medium/refined_elephant.off
   };
   for (const Case& c : cases)
   {
-    tc::BuildMemoryRequest r = request(c.points, c.triangles);
-    r.errorTarget = 7e-4;
-    const double mb = tc::estimateBuildMemory(r).peak() / kMB;
+    const double mb =
+      tc::estimateBuildMemory(request(c.points, c.triangles, 0, 8, tc::kDefaultErrorTarget))
+        .peak() /
+      kMB;
     EXPECT_GE(mb, c.measuredMB) << c.triangles << " triangles";
     EXPECT_LE(mb, 3.0 * c.measuredMB) << c.triangles << " triangles";
   }

@@ -15,6 +15,9 @@ namespace tc
 namespace
 {
 // Bytes of peak resident memory, per input triangle or per grid sample (see the file comment).
+/// What every build touches whatever its size (library code paged in, thread stacks, the
+/// allocator's arenas), in both phases.
+constexpr double kFixed = 12.0 * 1024.0 * 1024.0;
 constexpr double kKeptBeforeClustering = 400.0; ///< the meshes of read, preparation, curvature
 constexpr double kExactGraph = 1600.0;          ///< the exact sparse graph and its eigensolver
 constexpr double kNystrom = 500.0;              ///< the Nystrom blocks and their products
@@ -53,23 +56,19 @@ BuildMemoryEstimate estimateBuildMemory(const BuildMemoryRequest& r)
   const double triangles = static_cast<double>(r.triangles);
   BuildMemoryEstimate e;
   const double clustering = r.triangles > r.nystromThreshold ? kNystrom : kExactGraph;
-  e.front = saturated(triangles * (kKeptBeforeClustering + clustering));
+  e.front = saturated(kFixed + triangles * (kKeptBeforeClustering + clustering));
 
   e.charts =
     std::max<int64_t>(std::max<int64_t>(r.targetFaces, 1), r.triangles / kTrianglesPerChart);
   const double budget = static_cast<double>(r.sampleBudget > 0 ? r.sampleBudget : r.points);
   const bool target = r.errorTarget > 0.0;
-  double measured = budget * static_cast<double>(int64_t(1) << (2 * kErrorRuleLevelsAbove));
-  if (target)
-  {
-    measured = std::max(measured, static_cast<double>(kMinTargetSamples));
-  }
+  const double measured = budget * static_cast<double>(int64_t(1) << (2 * kErrorRuleLevelsAbove));
   const double capped =
     static_cast<double>(e.charts) * static_cast<double>(gridVertexCount(r.maxLevel));
   const double samples = std::min(measured, capped);
   e.samples = saturated(samples);
-  e.images =
-    saturated(triangles * kKeptAfterPaths + samples * (target ? kPerTargetSample : kPerSample));
+  e.images = saturated(
+    kFixed + triangles * kKeptAfterPaths + samples * (target ? kPerTargetSample : kPerSample));
   return e;
 }
 } // namespace tc

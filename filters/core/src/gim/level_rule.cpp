@@ -22,12 +22,9 @@ SampleBudgets sampleBudgets(
   SampleBudgets b;
   b.area = options.sampleBudget > 0 ? options.sampleBudget : std::max(minimum, inputPoints);
   b.measured = b.area << (2 * kErrorRuleLevelsAbove);
-  const bool byTarget = stopsOnTarget(options);
-  if (byTarget)
-  {
-    b.measured = std::max(b.measured, kMinTargetSamples);
-  }
-  b.finest = options.sampleBudget > 0 ? options.sampleBudget : byTarget ? b.measured : b.area;
+  b.finest = options.sampleBudget > 0 ? options.sampleBudget
+    : stopsOnTarget(options)          ? b.measured
+                                      : b.area;
   return b;
 }
 

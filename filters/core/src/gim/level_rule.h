@@ -22,8 +22,7 @@ inline bool stopsOnTarget(const GeometryImageOptions& o)
 struct SampleBudgets
 {
   int64_t area = 0; ///< the area rule's: sampleBudget, or 0 -> the input's points
-  /// what the error rule's grids may hold: 4^kErrorRuleLevelsAbove x area, and with an
-  /// errorTarget at least kMinTargetSamples
+  /// what the error rule's grids may hold: 4^kErrorRuleLevelsAbove x area
   int64_t measured = 0;
   int64_t finest = 0; ///< the finest levels' total: sampleBudget, or 0 -> area or measured
 };

@@ -9,14 +9,15 @@
 ///   SpectralClusteringOptions::nystromThreshold faces, the Nystrom blocks (#F x rank floats and
 ///   their products) above it;
 /// - geometry images: the meshes kept after path tracing plus the grids the error rule samples,
-///   at most 16 times the budget (kErrorRuleLevelsAbove levels above the area rule's), with an
-///   error target at least kMinTargetSamples (and more bytes per sample: its measuring rounds
-///   sample charts again, and its finest levels may hold every sample), and at most every chart
-///   at maxLevel.
+///   at most 16 times the budget (kErrorRuleLevelsAbove levels above the area rule's), and at
+///   most every chart at maxLevel; with an error target each counts more bytes (its measuring
+///   rounds sample charts again, and its finest levels may hold every sample).
 /// The coefficients are bytes per triangle or per sample of peak resident memory measured on the
 /// shared meshes (bench/build_memory.sh prints estimate and measurement); the estimate is meant
 /// to be a little above the measurement, never far below it.
 #pragma once
+
+#include "tc/gim/geometry_images.h"
 
 #include <cstdint>
 
@@ -24,13 +25,13 @@ namespace tc
 {
 struct BuildMemoryRequest
 {
-  int64_t points = 0;                ///< input points (0 .. 2^31)
-  int64_t triangles = 0;             ///< input triangles (a polygon counts as its fan)
-  int64_t sampleBudget = 0;          ///< GeometryImageOptions::sampleBudget; 0: `points`
-  double errorTarget = 0.0;          ///< GeometryImageOptions::errorTarget
-  int32_t maxLevel = 8;              ///< GeometryImageOptions::maxLevel
-  int64_t targetFaces = 100;         ///< BaseComplexOptions::targetFaces
-  int64_t nystromThreshold = 100000; ///< SpectralClusteringOptions::nystromThreshold
+  int64_t points = 0;                       ///< input points (0 .. 2^31)
+  int64_t triangles = 0;                    ///< input triangles (a polygon counts as its fan)
+  int64_t sampleBudget = 0;                 ///< GeometryImageOptions::sampleBudget; 0: `points`
+  double errorTarget = kDefaultErrorTarget; ///< GeometryImageOptions::errorTarget
+  int32_t maxLevel = 8;                     ///< GeometryImageOptions::maxLevel
+  int64_t targetFaces = 100;                ///< BaseComplexOptions::targetFaces
+  int64_t nystromThreshold = 100000;        ///< SpectralClusteringOptions::nystromThreshold
 };
 
 struct BuildMemoryEstimate

@@ -28,12 +28,13 @@
 ///   depend on the thread count. Levels are point samples of the finest grid, so the grids
 ///   sampled at the cap hold every lower level bit for bit: nothing is sampled twice and the atlas
 ///   equals one sampled directly at the chosen d_max (then fitted).
-/// - With an errorTarget, the error rule stops on the error instead of the budget: charts are
+/// - With an errorTarget (the default), the error rule stops on the error instead of the
+///   budget: charts are
 ///   sampled first at the area rule's d_max, and every chart whose levelError there is above
 ///   errorTarget * diagonal is sampled again one level finer (with its paths, and the charts
 ///   across them, which copy their sides), round after round, until none is above the target
-///   below maxLevel or the grids would hold more than max(4^kErrorRuleLevelsAbove times the area
-///   rule's budget, kMinTargetSamples) (largest errors first). The charts then rise as above, each only while its
+///   below maxLevel or the grids would hold more than 4^kErrorRuleLevelsAbove times the area
+///   rule's budget (largest errors first). The charts then rise as above, each only while its
 ///   error is above the target (and the rise fits sampleBudget when one is given): every chart
 ///   ends at the first level below the target, or at its cap.
 /// - Interior grid samples: the grid point is located in the parameterized patch and position,
@@ -97,21 +98,21 @@ enum class LevelRule : int32_t
 /// Levels above the area rule's d_max up to which the error rule measures a chart.
 constexpr int32_t kErrorRuleLevelsAbove = 2;
 
-/// With an errorTarget the error rule may measure at least this many samples whatever the
-/// budget (about 36 MB): a coarse mesh needs tens of grid samples per input point for a grid to
-/// follow its facets within a small target, which 4^kErrorRuleLevelsAbove times its points
-/// would not allow.
-constexpr int64_t kMinTargetSamples = int64_t(1) << 20;
+/// The default GeometryImageOptions::errorTarget. The target bounds each chart's levelError
+/// (grid against the chart's own triangles); the stitched sides of a coarser neighbour and the
+/// two-sided Hausdorff add to it, so the target sits below the 0.1% of the diagonal meant for the
+/// finest level (a pixel in a 1,000-pixel view of the whole mesh).
+constexpr double kDefaultErrorTarget = 7e-4;
 
 struct GeometryImageOptions
 {
   /// The error rule's goal, as a fraction of the input's bounding-box diagonal: a chart rises
   /// while its levelError at its current level is above errorTarget * diagonal (and it is
   /// below maxLevel and the budget allows), and no further. 0: no goal, the budget alone.
-  double errorTarget = 0.0;
+  double errorTarget = kDefaultErrorTarget;
   /// Total samples over all charts at their finest level, (2^d + 1)(2^d + 2) / 2 per chart.
   /// 0: with an errorTarget, as many as the target needs (up to what the measuring may hold,
-  /// 4^kErrorRuleLevelsAbove times the input's points or kMinTargetSamples); without one, as many as the input has
+  /// 4^kErrorRuleLevelsAbove times the input's points); without one, as many as the input has
   /// points. A budget below #charts samples at minLevel is an error; with 0 the charts simply
   /// stay at minLevel then.
   int64_t sampleBudget = 0;
