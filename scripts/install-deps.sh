@@ -11,7 +11,9 @@ packages=(
   libswscale-dev libgl2ps-dev libpng-dev libnetcdf-dev libgdal-dev libglew-dev
   libdouble-conversion-dev libfreetype-dev
   libeigen3-dev libspectra-dev libcgal-dev libopenexr-dev libboost-graph-dev libassimp-dev
-  libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev nlohmann-json3-dev
+  libgtest-dev libtbb-dev zlib1g-dev libmeshoptimizer-dev nlohmann-json3-dev libtinygltf-dev
+  # gltfpack: the peer of the glTF export (bench/gltf_export.py).
+  gltfpack
   xvfb xauth mesa-utils libgl1-mesa-dri
   universal-ctags
   # The sanitizer build and its libFuzzer targets (scripts/test-sanitize.sh, bench/fuzz.sh);

@@ -50,6 +50,11 @@ void tcAtlasWriter::WriteData()
   }
 }
 
+bool tcAtlasWriter::IsAtlasFileName(const char* path)
+{
+  return path && tc::isAtlasFileName(path);
+}
+
 void tcAtlasWriter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -31,6 +31,10 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  /// Whether the writer takes this file name (.exr), so that a caller can refuse a wrong one
+  /// before building the atlas.
+  static bool IsAtlasFileName(const char* path);
+
 protected:
   tcAtlasWriter();
   ~tcAtlasWriter() override;

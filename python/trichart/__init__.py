@@ -32,7 +32,8 @@ __version__ = _config.VERSION
 from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features,  # noqa: E402,F401
                        base_complex, trace_paths, geometry_images, rebuild, surface_distance,
                        read_atlas, write_atlas, atlas_charts, build, TriChartError,
-                       UntraceableError, ResourceError, estimate_memory, set_max_threads)
+                       UntraceableError, ResourceError, estimate_memory, set_max_threads,
+                       write_mesh, export_gltf, MESH_EXTENSIONS)
 
 
 def plugin_path():

@@ -169,13 +169,37 @@ def cmd_build(args):
 
 
 def cmd_mesh(args):
-    from .pipeline import read_atlas, rebuild, write_vtp
+    from .pipeline import check_mesh_file_name, read_atlas, rebuild, write_mesh
 
+    check_mesh_file_name(args.output)
     atlas = read_atlas(args.atlas)
     mesh = rebuild(atlas, level=args.level)
     print(f"{args.atlas} at level {args.level}: {mesh.GetNumberOfPoints()} points, "
           f"{mesh.GetNumberOfPolys()} triangles")
-    print(f"wrote {write_vtp(mesh, args.output)}")
+    print(f"wrote {write_mesh(mesh, args.output)}")
+    return 0
+
+
+def cmd_export(args):
+    from .pipeline import check_gltf_file_name, export_gltf, read_atlas
+
+    check_gltf_file_name(args.output)
+    atlas = read_atlas(args.atlas)
+    bar = None if args.quiet else ProgressBar()
+    try:
+        lods = export_gltf(atlas, args.output, progress=bar, chain=CHAINS.index(args.chain),
+                           layout=LAYOUTS.index(args.layout), error_ratio=args.error_ratio,
+                           max_lods=args.max_lods, error_pixels=args.error_pixels,
+                           viewport_height=args.viewport_height)
+    finally:
+        if bar:
+            bar.close()
+    print(f"{'LOD':>4} {'triangles':>10} {'error/diag':>11} {'coverage':>9}")
+    for k, lod in enumerate(lods):
+        print(f"{k:>4} {lod['triangles']:>10} {100 * lod['error_fraction']:>10.4f}% "
+              f"{lod['screen_coverage']:>9.4f}")
+    print(f"wrote {os.path.abspath(args.output)} ({os.path.getsize(args.output)} bytes, "
+          f"{len(lods)} LODs, {args.layout})")
     return 0
 
 
@@ -200,12 +224,13 @@ def cmd_eval(args):
 
 
 def cmd_prepare(args):
-    from .pipeline import prepare, read_mesh, write_vtp
+    from .pipeline import check_mesh_file_name, prepare, read_mesh, write_mesh
 
+    check_mesh_file_name(args.output)
     clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
                             **_repair_options(args))
     print(report.strip() or "nothing to change")
-    print(f"wrote {write_vtp(clean, args.output)}")
+    print(f"wrote {write_mesh(clean, args.output)}")
     return 0
 
 
@@ -223,6 +248,7 @@ class _Defaults:
         from .TriChartFeatures import tcFeatureRefinement, tcSpectralClustering
         from .TriChartGeometryImages import (tcGeometryImageMesh, tcGeometryImages,
                                              tcSurfaceDistance)
+        from .TriChartIO import tcGLTFWriter
         from .TriChartPreparation import tcMeshPreparation
 
         self.preparation = tcMeshPreparation()
@@ -232,6 +258,7 @@ class _Defaults:
         self.images = tcGeometryImages()
         self.rebuild = tcGeometryImageMesh()
         self.distance = tcSurfaceDistance()
+        self.gltf = tcGLTFWriter()
 
 
 def _add_repair_options(parser, d):
@@ -311,8 +338,41 @@ def _add_build_parser(sub, d):
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
 
 
+# The --chain and --layout names, in the order of tcGLTFWriter's CHAIN_* and LAYOUT_*.
+CHAINS = ("error", "uniform")
+LAYOUTS = ("msft-lod", "named-nodes")
+
+
+def _add_export_parser(sub, d):
+    w = d.gltf
+    p = sub.add_parser("export", help="write an atlas as a glTF 2.0 LOD chain (.glb, .gltf)")
+    p.add_argument("atlas", help="atlas file (.exr)")
+    p.add_argument("-o", "--output", required=True, help="glTF file to write (.glb or .gltf)")
+    p.add_argument("--chain", choices=CHAINS, default=CHAINS[w.GetChain()],
+                   help="error: each LOD lets the largest error grow by --error-ratio, every "
+                        "chart at the coarsest level within it; uniform: one level for every "
+                        f"chart per LOD (default {CHAINS[w.GetChain()]})")
+    p.add_argument("--layout", choices=LAYOUTS, default=LAYOUTS[w.GetLayout()],
+                   help="msft-lod: LOD 0 in the scene, the others linked by MSFT_lod; "
+                        "named-nodes: every LOD in the scene as TriChart_LOD<k> (default "
+                        f"{LAYOUTS[w.GetLayout()]})")
+    p.add_argument("--error-ratio", type=float, default=w.GetErrorRatio(),
+                   help=f"growth of the largest error per LOD (default {w.GetErrorRatio():g})")
+    p.add_argument("--max-lods", type=int, default=w.GetMaxLods(),
+                   help=f"most LODs written (default {w.GetMaxLods()})")
+    p.add_argument("--error-pixels", type=float, default=w.GetErrorPixels(),
+                   help=f"error an LOD may show for the screen-coverage hints (default "
+                        f"{w.GetErrorPixels():g} px)")
+    p.add_argument("--viewport-height", type=float, default=w.GetViewportHeight(),
+                   help=f"viewport height of the hints (default {w.GetViewportHeight():g} px)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+
+
 def _parser(d):
     """The command line: info, build, mesh, eval and prepare, with the filters' defaults."""
+    from .pipeline import MESH_EXTENSIONS
+
+    formats = ", ".join(MESH_EXTENSIONS)
     parser = argparse.ArgumentParser(
         prog="trichart", description="TriChart: triangle-chart geometry images and LOD.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -323,15 +383,18 @@ def _parser(d):
     p.add_argument("--level", type=int, default=d.rebuild.GetLevel(),
                    help=f"level of every chart, capped by its finest (default "
                         f"{d.rebuild.GetLevel()}: finest)")
-    p.add_argument("-o", "--output", required=True, help="output .vtp file")
+    p.add_argument("-o", "--output", required=True,
+                   help="output mesh, in the format its extension names: " + formats)
+    _add_export_parser(sub, d)
     p = sub.add_parser("eval", help="error of every level of an atlas against a mesh")
     p.add_argument("mesh", help="the original mesh")
     p.add_argument("atlas", help="atlas file (.exr)")
     p.add_argument("--samples", type=int, default=d.distance.GetSamplesPerMesh(),
                    help="samples per surface (default: chosen from the triangle counts)")
-    p = sub.add_parser("prepare", help="clean a mesh and write it as VTP")
+    p = sub.add_parser("prepare", help="clean a mesh and write it")
     p.add_argument("mesh")
-    p.add_argument("-o", "--output", required=True, help="output .vtp file")
+    p.add_argument("-o", "--output", required=True,
+                   help="output mesh, in the format its extension names: " + formats)
     p.add_argument("--merge-tolerance", type=float, default=d.preparation.GetMergeTolerance(),
                    help="merge points closer than this fraction of the diagonal")
     _add_repair_options(p, d)
@@ -369,6 +432,17 @@ def _check_args(parser, args, d):
             parser.error(f"--max-error must be {low:g} .. {high:g}, not {args.max_error}")
         if not 0 <= args.threads <= 4096:
             parser.error(f"--threads must be 1 .. 4096 (0: one per core), not {args.threads}")
+    if args.command == "export":
+        w = d.gltf
+        for name, low, high in (("error_ratio", w.GetErrorRatioMinValue(), w.GetErrorRatioMaxValue()),
+                                ("max_lods", w.GetMaxLodsMinValue(), w.GetMaxLodsMaxValue()),
+                                ("error_pixels", w.GetErrorPixelsMinValue(),
+                                 w.GetErrorPixelsMaxValue()),
+                                ("viewport_height", w.GetViewportHeightMinValue(),
+                                 w.GetViewportHeightMaxValue())):
+            if not low <= getattr(args, name) <= high:
+                parser.error(f"--{name.replace('_', '-')} must be {low:g} .. {high:g}, not "
+                             f"{getattr(args, name)}")
     if args.command in ("build", "prepare") and (args.max_hole_edges < 0 or
                                                  0 < args.max_hole_edges < 3):
         parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "
@@ -401,7 +475,7 @@ def _main(argv):
 
     try:
         commands = {"info": cmd_info, "build": cmd_build, "mesh": cmd_mesh, "eval": cmd_eval,
-                    "prepare": cmd_prepare}
+                    "prepare": cmd_prepare, "export": cmd_export}
         return commands[args.command](args)
     except TriChartError as error:
         print(f"trichart: error: {error}", file=sys.stderr)

@@ -5,9 +5,14 @@ import tempfile
 import threading
 import time
 
+import numpy
 from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkIOGeometry import vtkOBJWriter, vtkSTLWriter
+from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
+from vtkmodules.vtkIOPLY import vtkPLYWriter
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures,
@@ -369,6 +374,14 @@ def read_atlas(path, progress=None):
     return _multiblock(reader)
 
 
+def check_atlas_file_name(path):
+    """Raise TriChartError unless `path` names an atlas file (.exr)."""
+    if not TriChartIO.tcAtlasWriter.IsAtlasFileName(str(path)):
+        raise TriChartError(f"cannot write the atlas '{path}': an atlas file is OpenEXR, named "
+                            f".exr (a mesh for other tools: trichart mesh; an LOD chain: "
+                            f"trichart export)")
+
+
 def write_atlas(atlas, path, progress=None):
     """Write the atlas multiblock as one OpenEXR file (temporary file renamed at the end)."""
     writer = TriChartIO.tcAtlasWriter()
@@ -385,24 +398,110 @@ def atlas_charts(atlas):
     return atlas.GetBlock(0)
 
 
-def write_vtp(mesh, path):
-    """Write `mesh` as VTP; the file appears only when complete (temporary file, then rename)."""
+def _xml_writer():
+    writer = vtkXMLPolyDataWriter()
+    writer.SetDataModeToBinary()
+    return writer
+
+
+def _legacy_writer():
+    writer = vtkPolyDataWriter()
+    writer.SetFileTypeToBinary()
+    return writer
+
+
+def _ply_writer():
+    writer = vtkPLYWriter()
+    writer.SetFileTypeToBinary()
+    return writer
+
+
+def _stl_writer():
+    writer = vtkSTLWriter()
+    writer.SetFileTypeToBinary()
+    return writer
+
+
+# The mesh formats TriChart writes, by extension: VTK's writers, and OFF (below).
+_MESH_WRITERS = {".vtp": _xml_writer, ".vtk": _legacy_writer, ".ply": _ply_writer,
+                 ".obj": vtkOBJWriter, ".stl": _stl_writer, ".off": None}
+MESH_EXTENSIONS = tuple(_MESH_WRITERS)
+
+
+def check_mesh_file_name(path):
+    """Raise TriChartError unless `path` names a mesh format TriChart writes."""
+    extension = os.path.splitext(str(path))[1].lower()
+    if extension not in _MESH_WRITERS:
+        raise TriChartError(
+            f"cannot write '{path}': unknown extension '{extension}'; a mesh is written as "
+            f"{', '.join(MESH_EXTENSIONS)} (an atlas as .exr: trichart build; an LOD chain as "
+            f".glb or .gltf: trichart export)")
+    return extension
+
+
+def _write_off(mesh, path):
+    """ASCII OFF: VTK has no OFF writer; points in full float precision, triangles as given."""
+    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
+    polys = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    with open(path, "w", encoding="ascii") as out:
+        out.write(f"OFF\n{len(points)} {len(polys)} 0\n")
+        numpy.savetxt(out, points, fmt="%.9g")
+        numpy.savetxt(out, numpy.hstack([numpy.full((len(polys), 1), 3), polys]), fmt="%d")
+    return True
+
+
+def write_mesh(mesh, path):
+    """Write `mesh` in the format its extension names (MESH_EXTENSIONS; anything else is
+    refused); the file appears only when complete (temporary file, then rename)."""
+    extension = check_mesh_file_name(path)
     path = os.path.abspath(str(path))
-    folder = os.path.dirname(path)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".vtp", dir=folder)
+    if extension in (".stl", ".off") and mesh.GetPolys().GetMaxCellSize() > 3:
+        raise TriChartError(f"cannot write '{path}': {extension} takes triangles only")
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=extension, dir=os.path.dirname(path))
     os.close(fd)
     try:
-        writer = vtkXMLPolyDataWriter()
-        writer.SetFileName(tmp)
-        writer.SetInputData(mesh)
-        writer.SetDataModeToBinary()
-        if writer.Write() != 1:
+        if extension == ".off":
+            written = _write_off(mesh, tmp)
+        else:
+            writer = _MESH_WRITERS[extension]()
+            writer.SetFileName(tmp)
+            writer.SetInputData(mesh)
+            written = writer.Write() == 1
+        if not written:
             raise TriChartError(f"cannot write '{path}' (disk full or not writable?)")
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+def check_gltf_file_name(path):
+    """Raise TriChartError unless `path` names a glTF file (.glb or .gltf)."""
+    if not TriChartIO.tcGLTFWriter.IsGLTFFileName(str(path)):
+        raise TriChartError(f"cannot write '{path}': a glTF file is named .glb (binary) or "
+                            f".gltf (JSON)")
+
+
+def export_gltf(atlas, path, progress=None, **options):
+    """tcGLTFWriter: the atlas as a glTF 2.0 LOD chain in `path` (.glb or .gltf). Options:
+    chain (0: by error, the default; 1: uniform levels), layout (0: MSFT_lod, the default; 1:
+    named nodes), error_ratio, max_lods, error_pixels, viewport_height. Returns one dict per LOD
+    written (triangles, error in input units, error_fraction of the diagonal, screen_coverage).
+    """
+    check_gltf_file_name(path)
+    writer = TriChartIO.tcGLTFWriter()
+    writer.SetFileName(str(path))
+    writer.SetInputData(atlas)
+    _configure(writer, options)
+    run(writer, "export", progress)
+    if writer.GetErrorCode() != 0 or writer.GetNumberOfLods() == 0:
+        raise TriChartError(f"cannot write glTF '{path}'")
+    diagonal = writer.GetInputDiagonal() or 1.0
+    return [{"triangles": writer.GetLodTriangles(k), "error": writer.GetLodError(k),
+             "error_fraction": writer.GetLodError(k) / diagonal,
+             "screen_coverage": writer.GetLodScreenCoverage(k)}
+            for k in range(writer.GetNumberOfLods())]
 
 
 class _Stopwatch:
@@ -461,7 +560,7 @@ def _front_retrying_slivers(mesh, prepare_options, stage_options, progress, time
 def _write_stages(folder, outputs, image):
     """Every output as `folder`/name.vtp (the folder exists) and, with `image`, pictures of curvature, features and
     the base complex; returns the written paths by name."""
-    files = {name: write_vtp(data, os.path.join(folder, f"{name}.vtp"))
+    files = {name: write_mesh(data, os.path.join(folder, f"{name}.vtp"))
              for name, data in outputs.items()}
     if image:
         from .render import render_base_complex, render_curvature, render_features
@@ -520,6 +619,7 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     exceeds max_memory bytes (None: the available memory; 0: no limit). The result's "memory"
     holds the estimate and the bytes the process held at the start.
     """
+    check_atlas_file_name(atlas_path)
     timed = _Stopwatch()
     start = resident_memory()
     mesh, estimate = _read_within(path, progress, timed, max_memory,

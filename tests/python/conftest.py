@@ -4,7 +4,7 @@ import pathlib
 import pytest
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def testing_data():
     return pathlib.Path(os.environ.get("TRICHART_TESTING_DATA",
                                        pathlib.Path(__file__).parents[2] / "testing-data"))

@@ -1738,7 +1738,8 @@ std::map<std::array<int32_t, 4>, std::array<int64_t, 3>> documentedCodes(
     std::array<int64_t, 3> previous{ 0, 0, 0 };
     for (size_t c = 0; c < atlas.charts.size(); ++c)
     {
-      const int32_t d = atlas.charts[c].maxLevel - static_cast<int32_t>(k), big = 1 << d;
+      const int32_t d = atlas.charts[c].maxLevel - static_cast<int32_t>(k),
+                    big = d >= 0 ? 1 << d : 0;
       for (int32_t j = 0; d >= 0 && j <= big; ++j)
       {
         for (int32_t i = 0; i + j <= big; ++i)
@@ -2046,4 +2047,24 @@ TEST_F(AtlasIo, Version4ReportsProgressAndHonoursAbort)
   tctest::expectProgressAndAbort([&](const tc::Progress& progress)
     { expectBitIdentical(atlas, tc::readAtlas(path, progress)); },
     8, stopHalfWay);
+}
+
+TEST_F(AtlasIo, RefusesToWriteAnAtlasUnderAnotherExtension)
+{
+  // An atlas named like a mesh would be an OpenEXR file that mesh tools cannot open.
+  for (const char* name : { "atlas.glb", "atlas.obj", "atlas", "atlas.exr.tmp" })
+  {
+    try
+    {
+      tc::writeAtlas(tetrahedronAtlas(1, true), file(name));
+      ADD_FAILURE() << name << " was written";
+    }
+    catch (const tc::InputError& error)
+    {
+      EXPECT_NE(std::string(error.what()).find("named .exr"), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(Folder));
+  tc::writeAtlas(tetrahedronAtlas(1, true), file("UPPER.EXR"));
+  EXPECT_TRUE(std::filesystem::exists(file("UPPER.EXR")));
 }

@@ -10,6 +10,7 @@
 #include "io/temporary_file.h"
 
 #include "tc/common/errors.h"
+#include "tc/common/file_names.h"
 
 #include <Iex.h>
 #include <ImfChannelList.h>
@@ -635,9 +636,20 @@ bool isAtlasFile(const std::string& path)
   }
 }
 
+bool isAtlasFileName(const std::string& path)
+{
+  return hasExtension(path, ".exr");
+}
+
 void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& progress)
 {
   progress.report(0.0);
+  if (!isAtlasFileName(path))
+  {
+    throw InputError("cannot write atlas " + path +
+      ": an atlas file is OpenEXR, named .exr (a mesh or LOD chain for other tools: trichart "
+      "mesh or trichart export)");
+  }
   // 1. Refuse an atlas that is invalid or that the file cannot hold exactly.
   try
   {

@@ -31,11 +31,14 @@ constexpr int kAtlasFloatVersion = 3;
 ///
 /// @param[in] atlas  must pass tc::validateAtlas; its doubles must not be NaN; attribute names
 ///   must be UTF-8 (source may be anything: bytes that are not UTF-8 are written as U+FFFD)
-/// @param[in] path  file to write, conventionally *.exr
+/// @param[in] path  file to write, named *.exr (any case)
 /// @param[in] progress  reports the fraction of texel data written; abort throws tc::Aborted
-/// @throws tc::InputError  for an invalid atlas, or a path that cannot be written (missing
-///   folder, no permission, disk full), naming the path and the cause
+/// @throws tc::InputError  for an invalid atlas, a path not named .exr, or a path that cannot be
+///   written (missing folder, no permission, disk full), naming the path and the cause
 void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& progress = {});
+
+/// Whether writeAtlas takes the name `path`: it ends with .exr, in any case.
+bool isAtlasFileName(const std::string& path);
 
 /// Reads an atlas written by writeAtlas. Every float texel and every double is bit-identical to
 /// what was written.
