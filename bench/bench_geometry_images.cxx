@@ -12,7 +12,7 @@
 //       default meshes: bunny_glmark2 (70K), armadillo, fandisk_large, refined_elephant;
 //       --error-target: GeometryImageOptions::errorTarget (default: the option's default)
 #include "bench_common.h"
-#include "qem_peer.h"
+#include "tc/metrics/qem_peer.h"
 
 #include "tcMeshConversion.h"
 
@@ -358,7 +358,7 @@ void benchmark(const std::string& file, const tc::GeometryImageOptions& options)
     bool withinRatio = true;
     for (size_t d = 0; d < ours.size(); ++d)
     {
-      const LevelError qem = errorOf(tcbench::SimplifyQem(mesh, ours[d].triangles), mesh);
+      const LevelError qem = errorOf(tc::simplifyQem(mesh, ours[d].triangles), mesh);
       const double hRatio = ours[d].hausdorff / qem.hausdorff;
       const double rmsRatio = ours[d].rms / qem.rms;
       const bool hOk = hRatio <= kMaxErrorRatio, rmsOk = rmsRatio <= kMaxErrorRatio;
@@ -385,7 +385,7 @@ void benchmark(const std::string& file, const tc::GeometryImageOptions& options)
     {
       const LevelError adaptive =
         errorOf(tc::rebuildMesh(atlas, adaptiveLevels(atlas, ours[d].triangles)).mesh, mesh);
-      const LevelError qem = errorOf(tcbench::SimplifyQem(mesh, adaptive.triangles), mesh);
+      const LevelError qem = errorOf(tc::simplifyQem(mesh, adaptive.triangles), mesh);
       std::cout << std::setw(6) << d << std::setw(9) << adaptive.vertices << std::setw(9)
                 << adaptive.triangles << std::setw(11) << percent(adaptive.hausdorff)
                 << std::setw(11) << percent(adaptive.rms) << std::setw(11) << percent(qem.hausdorff)

@@ -5,9 +5,9 @@
 // pixels at the instance's bounding sphere, instances outside the view not drawn.
 #pragma once
 
-#include "qem_peer.h"
 #include "tcMeshConversion.h"
 
+#include "tc/metrics/qem_peer.h"
 #include "tc/metrics/surface_distance.h"
 
 #include <vtkCamera.h>
@@ -55,7 +55,7 @@ inline DiscreteLod BuildChain(const tc::TriMesh& mesh, int64_t minTriangles)
     {
       return chain;
     }
-    tc::TriMesh next = SimplifyQem(mesh, target);
+    tc::TriMesh next = tc::simplifyQem(mesh, target);
     if (4 * next.numTriangles() > 3 * level.numTriangles())
     {
       return chain;

@@ -19,7 +19,7 @@ packages=(
   # The sanitizer build and its libFuzzer targets (scripts/test-sanitize.sh, bench/fuzz.sh);
   # llvm's llvm-symbolizer names the source line of each frame of a sanitizer's report.
   clang libclang-rt-14-dev llvm
-  python3-numpy python3-pytest
+  python3-numpy python3-pytest python3-matplotlib
 )
 
 missing=()

@@ -1,5 +1,6 @@
 """The `trichart` command: run TriChart stages on mesh files from the shell."""
 import argparse
+import json
 import os
 import re
 import shutil
@@ -111,42 +112,59 @@ def _scene_lines(mesh):
     return [line for line in lines if not line.startswith(("point array", "cell array"))]
 
 
-def _print_build_summary(args, result, seconds):
-    """The counts of every stage, the seconds per stage, the atlas size, what was read and
-    repaired, and the files written."""
-    surface = result["surface"]
-    charts = result["atlas"].GetBlock(0)
-    finest = _finest_level(result["atlas"])
-    size = os.path.getsize(result["files"]["atlas"])
-    print(f"{args.mesh}: {surface.GetNumberOfPoints()} points, "
-          f"{surface.GetNumberOfCells()} triangles, "
-          f"{result['feature_lines'].GetNumberOfCells()} feature lines, "
-          f"{result['corners'].GetNumberOfPoints()} corners, "
-          f"{result['base_complex'].GetNumberOfPolys()} base triangles, "
-          f"{charts.GetNumberOfRows()} charts up to level {finest} ({seconds:.2f} s)")
-    print("  seconds per stage: " + ", ".join(f"{name} {value:.2f}"
-                                              for name, value in result["seconds"].items()))
-    print(f"  atlas: {size / 1e6:.2f} MB, {size / surface.GetNumberOfCells():.1f} bytes per "
-          f"input triangle")
-    if result["retried"]:
-        print(f"  note: {result['retried']}")
-    for line in _scene_lines(result["mesh"]):
-        print(f"  read: {line}")
-    for line in result["report"].splitlines():
-        print(f"  prepared: {line}")
-    for name, path in result["files"].items():
-        print(f"  wrote {name}: {path}")
+def _input_triangles(mesh):
+    """The triangles of the mesh as read: each polygon counts as its fan."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    sides = numpy.diff(vtk_to_numpy(mesh.GetPolys().GetOffsetsArray()).astype(numpy.int64))
+    return int((sides - 2).clip(min=0).sum())
 
 
-def _print_memory(result):
-    """The estimate of the build against the peak resident memory it reached."""
+def _build_figures(args, result, seconds):
+    """Every figure the build summary prints, by name."""
     from .pipeline import resident_memory
 
+    surface = result["surface"]
+    size = os.path.getsize(result["files"]["atlas"])
+    triangles = _input_triangles(result["mesh"])
     # VmHWM, not getrusage's ru_maxrss: that one keeps the peak of the process this one was
     # forked from across exec (a test runner's, a shell's).
-    peak = resident_memory("VmHWM")
-    memory = result["memory"]
-    print(f"  memory: peak {peak / 2 ** 20:.0f} MB resident, estimated "
+    return {"mesh": str(args.mesh), "points": surface.GetNumberOfPoints(),
+            "triangles": surface.GetNumberOfCells(), "input_triangles": triangles,
+            "feature_lines": result["feature_lines"].GetNumberOfCells(),
+            "corners": result["corners"].GetNumberOfPoints(),
+            "base_triangles": result["base_complex"].GetNumberOfPolys(),
+            "charts": result["atlas"].GetBlock(0).GetNumberOfRows(),
+            "finest_level": _finest_level(result["atlas"]), "seconds": seconds,
+            "stage_seconds": result["seconds"], "atlas_bytes": size,
+            "bytes_per_input_triangle": size / max(triangles, 1),
+            "retried": result["retried"], "read": _scene_lines(result["mesh"]),
+            "prepared": result["report"].splitlines(), "files": result["files"],
+            "memory": {"peak": resident_memory("VmHWM"), **result["memory"]}}
+
+
+def _print_build_summary(f):
+    """The counts of every stage, the seconds per stage, the atlas size, what was read and
+    repaired, the files written and the memory against its estimate."""
+    print(f"{f['mesh']}: {f['points']} points, {f['triangles']} triangles, "
+          f"{f['feature_lines']} feature lines, {f['corners']} corners, "
+          f"{f['base_triangles']} base triangles, {f['charts']} charts up to level "
+          f"{f['finest_level']} ({f['seconds']:.2f} s)")
+    print("  seconds per stage: " + ", ".join(f"{name} {value:.2f}"
+                                              for name, value in f["stage_seconds"].items()))
+    print(f"  atlas: {f['atlas_bytes'] / 1e6:.2f} MB, {f['bytes_per_input_triangle']:.1f} bytes "
+          f"per input triangle")
+    if f["retried"]:
+        print(f"  note: {f['retried']}")
+    for line in f["read"]:
+        print(f"  read: {line}")
+    for line in f["prepared"]:
+        print(f"  prepared: {line}")
+    for name, path in f["files"].items():
+        print(f"  wrote {name}: {path}")
+    memory = f["memory"]
+    print(f"  memory: peak {memory['peak'] / 2 ** 20:.0f} MB resident, estimated "
           f"{memory['estimate'] / 2 ** 20:.0f} MB above the {memory['start'] / 2 ** 20:.0f} MB "
           f"held at the start")
 
@@ -163,8 +181,11 @@ def cmd_build(args):
     finally:
         if bar:
             bar.close()
-    _print_build_summary(args, result, time.perf_counter() - start)
-    _print_memory(result)
+    figures = _build_figures(args, result, time.perf_counter() - start)
+    if args.json:
+        print(json.dumps(figures, indent=2))
+    else:
+        _print_build_summary(figures)
     return 0
 
 
@@ -203,23 +224,120 @@ def cmd_export(args):
     return 0
 
 
-def cmd_eval(args):
-    from .pipeline import prepare, read_atlas, read_mesh, rebuild, surface_distance
+def _bounds_mismatch(mesh, reference):
+    """Why `mesh` (an atlas's finest level) and `reference` do not look like one surface: their
+    bounding boxes' diagonals or centres more than 10% of the reference's diagonal apart; ""
+    when they agree."""
+    import numpy
+
+    a, b = numpy.array(mesh.GetBounds()), numpy.array(reference.GetBounds())
+    size_a, size_b = a[1::2] - a[::2], b[1::2] - b[::2]
+    diagonal = float(numpy.linalg.norm(size_b)) or 1.0
+    centre = float(numpy.linalg.norm((a[1::2] + a[::2] - b[1::2] - b[::2]) / 2)) / diagonal
+    size = abs(float(numpy.linalg.norm(size_a)) - diagonal) / diagonal
+    if centre > 0.1 or size > 0.1:
+        return (f"the atlas and the mesh do not look like one surface: their bounding boxes' "
+                f"centres are {100 * centre:.0f}% of the diagonal apart and their diagonals "
+                f"differ by {100 * size:.0f}% (was the atlas built from this mesh?)")
+    return ""
+
+
+def _eval_figures(args):
+    """Every level's counts and errors against the prepared mesh, and a mismatch warning."""
+    from .pipeline import prepare, read_atlas, read_mesh, rebuild, simplify_qem, surface_distance
 
     reference, _ = prepare(read_mesh(args.mesh))
     atlas = read_atlas(args.atlas)
-    finest = _finest_level(atlas)
-    print(f"{args.atlas} against {args.mesh} ({reference.GetNumberOfPolys()} triangles)")
-    print(f"{'level':>5} {'points':>9} {'triangles':>10} {'Hausdorff':>12} {'RMS':>12} "
-          f"{'Hausdorff/diag':>15} {'RMS/diag':>10}")
-    for level in range(finest + 1):
+    figures = {"atlas": str(args.atlas), "mesh": str(args.mesh),
+               "triangles": reference.GetNumberOfPolys(), "levels": [], "warning": ""}
+    for level in range(_finest_level(atlas) + 1):
         mesh = rebuild(atlas, level=level)
-        _, figures = surface_distance(mesh, reference, samples_per_mesh=args.samples)
-        diagonal = figures["diagonal"] or 1.0
-        print(f"{level:>5} {mesh.GetNumberOfPoints():>9} {mesh.GetNumberOfPolys():>10} "
-              f"{figures['hausdorff']:>12.6g} {figures['rms']:>12.6g} "
-              f"{100 * figures['hausdorff'] / diagonal:>14.4f}% "
-              f"{100 * figures['rms'] / diagonal:>9.4f}%")
+        _, f = surface_distance(mesh, reference, samples_per_mesh=args.samples)
+        diagonal = f["diagonal"] or 1.0
+        row = {"level": level, "points": mesh.GetNumberOfPoints(),
+               "triangles": mesh.GetNumberOfPolys(), "hausdorff": f["hausdorff"], "rms": f["rms"],
+               "mean": f["mean"], "diagonal": f["diagonal"],
+               "hausdorff_fraction": f["hausdorff"] / diagonal,
+               "rms_fraction": f["rms"] / diagonal, "qem": None}
+        if row["triangles"] < figures["triangles"]:  # the peer at the same count
+            peer = simplify_qem(reference, row["triangles"])
+            _, q = surface_distance(peer, reference, samples_per_mesh=args.samples)
+            row["qem"] = {"triangles": peer.GetNumberOfPolys(),
+                          "hausdorff_fraction": q["hausdorff"] / diagonal,
+                          "rms_fraction": q["rms"] / diagonal}
+        figures["levels"].append(row)
+    figures["warning"] = _bounds_mismatch(mesh, reference)
+    return figures
+
+
+def _print_eval(figures):
+    print(f"{figures['atlas']} against {figures['mesh']} ({figures['triangles']} triangles)")
+    print(f"{'level':>5} {'points':>9} {'triangles':>10} {'Hausdorff':>12} {'RMS':>12} "
+          f"{'Hausdorff/diag':>15} {'RMS/diag':>10} {'QEM H/diag':>11} {'H/QEM':>6}")
+    for row in figures["levels"]:
+        qem = row["qem"]
+        peer = (f"{100 * qem['hausdorff_fraction']:>10.4f}% "
+                f"{row['hausdorff_fraction'] / qem['hausdorff_fraction']:>6.2f}"
+                if qem and qem["hausdorff_fraction"] > 0 else f"{'-':>11} {'-':>6}")
+        print(f"{row['level']:>5} {row['points']:>9} {row['triangles']:>10} "
+              f"{row['hausdorff']:>12.6g} {row['rms']:>12.6g} "
+              f"{100 * row['hausdorff_fraction']:>14.4f}% {100 * row['rms_fraction']:>9.4f}% "
+              f"{peer}")
+
+
+def _plot_eval(figures, path):
+    """Hausdorff and RMS against triangles, one point per level, log-log, as a PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")  # no display needed
+    from matplotlib import pyplot
+
+    rows = figures["levels"]
+    triangles = [row["triangles"] for row in rows]
+    figure, axes = pyplot.subplots(figsize=(7, 4.5), dpi=120)
+    axes.loglog(triangles, [100 * r["hausdorff_fraction"] for r in rows], "o-", label="Hausdorff")
+    axes.loglog(triangles, [100 * r["rms_fraction"] for r in rows], "s--", label="RMS")
+    peers = [r["qem"] for r in rows if r["qem"] and r["qem"]["hausdorff_fraction"] > 0]
+    if peers:
+        axes.loglog([q["triangles"] for q in peers], [100 * q["hausdorff_fraction"] for q in peers],
+                    "^:", color="grey", label="meshopt_simplify, Hausdorff")
+    for row in rows:
+        axes.annotate(f"L{row['level']}", (row["triangles"], 100 * row["hausdorff_fraction"]),
+                      textcoords="offset points", xytext=(4, 4), fontsize=8)
+    axes.set_xlabel("triangles")
+    axes.set_ylabel("error, % of the diagonal")
+    axes.set_title(f"{os.path.basename(figures['atlas'])} against "
+                   f"{os.path.basename(figures['mesh'])}")
+    axes.grid(True, which="both", alpha=0.3)
+    axes.legend()
+    figure.tight_layout()
+    folder = os.path.dirname(os.path.abspath(path))
+    temporary = os.path.join(folder, f".tmp-{os.getpid()}-{os.path.basename(path)}")
+    try:
+        figure.savefig(temporary, format="png")
+        os.replace(temporary, path)
+    finally:
+        pyplot.close(figure)
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+
+
+def cmd_eval(args):
+    from .pipeline import TriChartError
+
+    if args.plot and not args.plot.lower().endswith(".png"):
+        raise TriChartError(f"cannot write '{args.plot}': --plot writes a PNG, name it .png")
+    figures = _eval_figures(args)
+    if args.json:
+        print(json.dumps(figures, indent=2))
+    else:
+        _print_eval(figures)
+    if figures["warning"]:
+        print(f"trichart: warning: {figures['warning']}", file=sys.stderr)
+    if args.plot:
+        _plot_eval(figures, args.plot)
+        if not args.json:
+            print(f"wrote {os.path.abspath(args.plot)}")
     return 0
 
 
@@ -335,6 +453,8 @@ def _add_build_parser(sub, d):
                         "exceeds SIZE: bytes, or with a unit K, M, G, T (powers of 1024), "
                         "e.g. 8G, 512M; 0: no limit (default: the machine's available memory)")
     p.add_argument("--no-image", action="store_true", help="no pictures with --stages")
+    p.add_argument("--json", action="store_true",
+                   help="print the summary's figures as JSON instead of text")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
 
 
@@ -369,7 +489,8 @@ def _add_export_parser(sub, d):
 
 
 def _parser(d):
-    """The command line: info, build, mesh, eval and prepare, with the filters' defaults."""
+    """The command line: info, build, mesh, export, eval and prepare, with the filters'
+    defaults."""
     from .pipeline import MESH_EXTENSIONS
 
     formats = ", ".join(MESH_EXTENSIONS)
@@ -391,6 +512,9 @@ def _parser(d):
     p.add_argument("atlas", help="atlas file (.exr)")
     p.add_argument("--samples", type=int, default=d.distance.GetSamplesPerMesh(),
                    help="samples per surface (default: chosen from the triangle counts)")
+    p.add_argument("--json", action="store_true",
+                   help="print every figure as JSON instead of the table")
+    p.add_argument("--plot", metavar="PNG", help="also plot the errors against triangles")
     p = sub.add_parser("prepare", help="clean a mesh and write it")
     p.add_argument("mesh")
     p.add_argument("-o", "--output", required=True,
@@ -449,12 +573,40 @@ def _check_args(parser, args, d):
                      f"{args.max_hole_edges}")
 
 
+def _route_vtk_messages():
+    """VTK's warnings and stray errors as one `trichart: warning: ...` line each on stderr:
+    without the logger's time stamps, colour codes, file and line or object addresses, which
+    say nothing to a user (the command reports what matters itself)."""
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.util.vtkConstants import VTK_STRING
+    from vtkmodules.vtkCommonCore import vtkCommand, vtkLogger, vtkOutputWindow
+
+    @calldata_type(VTK_STRING)
+    def show(_window, event, text):
+        message = text.split("\n", 1)[-1].strip()  # after "Warning: In file, line N"
+        message = re.sub(r"^(\w+) \(0x[0-9a-fA-F]+\): ", r"\1: ", message)
+        kind = "warning" if event == "WarningEvent" else "error"
+        print(f"trichart: {kind}: {message}", file=sys.stderr)
+
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)
+    window = vtkOutputWindow.GetInstance()
+    window.SetDisplayModeToNever()
+    for event in (vtkCommand.WarningEvent, vtkCommand.ErrorEvent):
+        window.AddObserver(event, show)
+    _route_vtk_messages.keep = (window, show)  # the observer lives as long as the process
+
+
 def main(argv=None):
     try:
         return _main(argv)
     except KeyboardInterrupt:  # SIGINT before or between the stages (run() defers it in one)
         print("trichart: interrupted; nothing half-written was left", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader of the output went away (`| head`): stop quietly, as a shell tool does, and
+        # keep Python from reporting the failed flush of stdout at exit.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 128 + 13  # SIGPIPE
 
 
 def _main(argv):
@@ -466,12 +618,9 @@ def _main(argv):
     if _needs_display(args) and not os.environ.get("DISPLAY"):
         _reexec_under_xvfb()
 
-    from vtkmodules.vtkCommonCore import vtkLogger
-
     from .pipeline import TriChartError
 
-    # The command reports what matters itself; VTK's INFO lines would bury it.
-    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)
+    _route_vtk_messages()
 
     try:
         commands = {"info": cmd_info, "build": cmd_build, "mesh": cmd_mesh, "eval": cmd_eval,

@@ -351,6 +351,14 @@ def rebuild(atlas, level=None, chart_levels=None, progress=None):
     return _output(f)
 
 
+def simplify_qem(mesh, target_triangles, progress=None):
+    """tcMeshoptSimplify: meshoptimizer's QEM simplification of a triangle mesh to at most
+    target_triangles triangles (the input's triangles for a target at or above its count)."""
+    f = TriChartGeometryImages.tcMeshoptSimplify()
+    f.SetTargetTriangles(int(target_triangles))
+    return _output(_run_on(f, mesh, "simplify", progress, {}))
+
+
 def surface_distance(mesh, reference, progress=None, **options):
     """tcSurfaceDistance; returns (mesh with point array Distance, figures) where figures has
     hausdorff, mean, rms (absolute) and diagonal (of the reference's bounding box).

@@ -1,6 +1,8 @@
-"""Files for other tools: `trichart mesh` and `prepare` write the format the extension names (and
-refuse one they do not know), `build` writes only .exr, and `trichart export` writes a glTF 2.0
-LOD chain whose every LOD is `trichart mesh` at that level and that VTK's glTF reader loads."""
+"""Files and figures for other tools: `trichart mesh` and `prepare` write the format the
+extension names (and refuse one they do not know), `build` writes only .exr, `trichart export`
+writes a glTF 2.0 LOD chain whose every LOD is `trichart mesh` at that level and that VTK's glTF
+reader loads; `eval` and `build` print their figures as JSON, `eval` plots them with the QEM
+peer and warns when the mesh is not the atlas's, and a closed pipe ends the output quietly."""
 import json
 import struct
 import subprocess
@@ -141,3 +143,59 @@ def test_vtk_reads_the_export_back(atlas, tmp_path):
             iterator.GoToNextItem()
         # MSFT_lod: LOD 0 alone is in the scene; named nodes: every LOD.
         assert polys == (triangles[:shown] if shown else triangles), (layout, polys, triangles)
+
+
+def test_eval_json_holds_every_level_with_its_peer_and_plots_them(atlas, testing_data, tmp_path):
+    plot = tmp_path / "errors.png"
+    r = run("eval", testing_data / "meshes" / "bunny_npm.off", atlas, "--json", "--plot", plot)
+    assert r.returncode == 0, r.stderr
+    figures = json.loads(r.stdout)
+    levels = figures["levels"]
+    assert [row["level"] for row in levels] == list(range(len(levels))) and len(levels) >= 4
+    assert figures["warning"] == "" and "warning" not in r.stderr
+    for row in levels:
+        assert row["hausdorff_fraction"] >= row["rms_fraction"] > 0
+        if row["triangles"] < figures["triangles"]:  # the peer where it can simplify
+            assert row["qem"]["triangles"] <= row["triangles"]
+            assert row["qem"]["hausdorff_fraction"] > 0
+    errors = [row["hausdorff_fraction"] for row in levels]
+    assert errors == sorted(errors, reverse=True)
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    r = run("eval", testing_data / "meshes" / "bunny_npm.off", atlas, "--plot", tmp_path / "e.svg")
+    assert r.returncode == 2 and "name it .png" in r.stderr
+
+
+def test_eval_warns_when_the_mesh_is_not_the_atlas_one(atlas, testing_data):
+    r = run("eval", testing_data / "meshes" / "fandisk.off", atlas, "--json")
+    assert r.returncode == 0, r.stderr
+    assert "do not look like one surface" in json.loads(r.stdout)["warning"]
+    assert "trichart: warning: the atlas and the mesh do not look like one surface" in r.stderr
+
+
+def test_a_closed_pipe_stops_the_output_quietly(atlas, testing_data):
+    command = (f"{sys.executable} -m trichart eval {testing_data / 'meshes' / 'bunny_npm.off'} "
+               f"{atlas} | head -1")
+    r = subprocess.run(["bash", "-c", command], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and r.stdout.startswith(str(atlas)), r.stdout
+    assert "Traceback" not in r.stderr and "BrokenPipe" not in r.stderr, r.stderr
+
+
+def test_build_json_holds_the_summary(testing_data, tmp_path):
+    out = tmp_path / "a.exr"
+    r = run("build", testing_data / "meshes" / "bunny_npm.off", "-o", out, "-q", "--json")
+    assert r.returncode == 0, r.stderr
+    figures = json.loads(r.stdout)
+    assert figures["input_triangles"] == 3674 and figures["files"]["atlas"] == str(out)
+    assert figures["bytes_per_input_triangle"] == pytest.approx(out.stat().st_size / 3674)
+    assert figures["charts"] > 0 and figures["finest_level"] >= 2
+    assert figures["memory"]["peak"] <= figures["memory"]["start"] + figures["memory"]["estimate"]
+
+
+def test_vtk_warnings_reach_the_user_as_plain_lines(tmp_path):
+    # Two tetrahedra that share one vertex: the preparation warns of the pinch.
+    mesh = tmp_path / "pinch.off"
+    mesh.write_text("OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 5\n3 0 6 4\n3 0 5 6\n3 4 6 5\n")
+    r = run("prepare", mesh, "-o", tmp_path / "out.vtp")
+    assert "trichart: warning: tcMeshPreparation: The mesh has" in r.stderr, r.stderr
+    assert "\x1b[" not in r.stderr and "0x" not in r.stderr and "WARN|" not in r.stderr, r.stderr

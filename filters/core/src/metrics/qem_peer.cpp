@@ -1,22 +1,24 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The QEM peer of the benchmarks: meshoptimizer's meshopt_simplify, the simplifier a game
-// engine's LOD chain (gltfpack) is made with.
-#pragma once
+#include "tc/metrics/qem_peer.h"
 
-#include "tc/common/mesh.h"
+#include "tc/common/errors.h"
 
 #include <meshoptimizer.h>
 
-#include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
-namespace tcbench
+namespace tc
 {
-/// meshoptimizer's quadric simplification of `mesh` to at most `targetTriangles` triangles,
-/// returned as a mesh of the vertices it still uses; `mesh` itself for a target at or above
-/// its count (meshopt_simplify requires a target no larger than its input).
-inline tc::TriMesh SimplifyQem(const tc::TriMesh& mesh, int64_t targetTriangles)
+TriMesh simplifyQem(const TriMesh& mesh, int64_t targetTriangles)
 {
+  if (targetTriangles < 0 || mesh.triangles.size() > std::numeric_limits<unsigned int>::max())
+  {
+    throw InputError("simplifyQem: the target must be >= 0 and the mesh below 2^32 indices "
+                     "(target " +
+      std::to_string(targetTriangles) + ")");
+  }
   if (targetTriangles >= mesh.numTriangles())
   {
     return mesh;
@@ -30,7 +32,7 @@ inline tc::TriMesh SimplifyQem(const tc::TriMesh& mesh, int64_t targetTriangles)
     3 * static_cast<size_t>(targetTriangles), 1.0f);
   kept.resize(count);
   std::vector<int32_t> newId(static_cast<size_t>(mesh.numPoints()), -1);
-  tc::TriMesh out;
+  TriMesh out;
   for (const unsigned int v : kept)
   {
     if (newId[v] < 0)
@@ -43,4 +45,4 @@ inline tc::TriMesh SimplifyQem(const tc::TriMesh& mesh, int64_t targetTriangles)
   }
   return out;
 }
-} // namespace tcbench
+} // namespace tc
