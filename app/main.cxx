@@ -30,6 +30,7 @@ struct ViewerOptions
   QString AtlasPath;
   int Level = -1;
   int Instances = 1;
+  tcCameraView Camera;
 };
 
 void AddOptions(QCommandLineParser& parser, const QString& stageList)
@@ -58,6 +59,16 @@ void AddOptions(QCommandLineParser& parser, const QString& stageList)
     "Write the atlas of the last file (built, or the one opened) as .exr, as File > Save atlas "
     "does.",
     "file"));
+  parser.addOption(QCommandLineOption("view",
+    "Look from this side: " + tcCameraView::Directions().join(", ") +
+      " (default: the stage's own camera, from the front).",
+    "side"));
+  parser.addOption(QCommandLineOption(
+    "azimuth", "Then turn the camera this many degrees about the view-up axis.", "deg", "0"));
+  parser.addOption(
+    QCommandLineOption("elevation", "Then turn it this many degrees up (-90 to 90).", "deg", "0"));
+  parser.addOption(QCommandLineOption(
+    "zoom", "Then zoom by this factor (> 1: closer; 0.05 to 20).", "factor", "1"));
   parser.addOption(QCommandLineOption("instances",
     "Instances of the lod stage's crowd, on a square grid of the ground (1 to 2500, default 1).",
     "n", "1"));
@@ -106,6 +117,36 @@ bool ReadInteger(
   return true;
 }
 
+/// The real number of option `name`, from `lo` to `hi`; false (said on stderr) if not.
+bool ReadReal(
+  const QCommandLineParser& parser, const char* name, double lo, double hi, double& value)
+{
+  bool ok = false;
+  value = parser.value(name).toDouble(&ok);
+  if (!ok || !(value >= lo && value <= hi))
+  {
+    std::cerr << "trichart-viewer: --" << name << " needs a number from " << lo << " to " << hi
+              << ", not '" << parser.value(name).toStdString() << "'\n";
+    return false;
+  }
+  return true;
+}
+
+/// --view, --azimuth, --elevation and --zoom; false (said on stderr) if one is refused.
+bool ReadCamera(const QCommandLineParser& parser, tcCameraView& camera)
+{
+  camera.Direction = parser.value("view");
+  if (parser.isSet("view") && !tcCameraView::Directions().contains(camera.Direction))
+  {
+    std::cerr << "trichart-viewer: unknown --view '" << camera.Direction.toStdString() << "'; use "
+              << tcCameraView::Directions().join(", ").toStdString() << "\n";
+    return false;
+  }
+  return ReadReal(parser, "azimuth", -360.0, 360.0, camera.Azimuth) &&
+    ReadReal(parser, "elevation", -90.0, 90.0, camera.Elevation) &&
+    ReadReal(parser, "zoom", 0.05, 20.0, camera.Zoom);
+}
+
 /// Reads the command line (--help exits here); false if it is refused (said on stderr).
 bool ReadOptions(const QApplication& app, ViewerOptions& options)
 {
@@ -126,7 +167,8 @@ bool ReadOptions(const QApplication& app, ViewerOptions& options)
   }
   if (!ReadInteger(
         parser, "level", -1, std::numeric_limits<int>::max(), "an integer >= -1", options.Level) ||
-    !ReadInteger(parser, "instances", 1, 2500, "an integer from 1 to 2500", options.Instances))
+    !ReadInteger(parser, "instances", 1, 2500, "an integer from 1 to 2500", options.Instances) ||
+    !ReadCamera(parser, options.Camera))
   {
     return false;
   }
@@ -198,6 +240,7 @@ int main(int argc, char* argv[])
   tcViewerWindow window;
   window.SetReconstructionLevel(options.Level);
   window.SetInstances(options.Instances);
+  window.SetCameraView(options.Camera);
   const bool batch = options.Screenshot || options.SaveAtlas;
   window.SetBatchMode(batch);
   RouteLogs(batch);

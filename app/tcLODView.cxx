@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcLODView.h"
 
+#include "tcColorMaps.h"
 #include "tcLODMapper.h"
+
+#include "tc/common/array_names.h"
 
 #include <QStringList>
 
@@ -11,6 +14,7 @@
 #include <vtkCoordinate.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
 #include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkPlaneSource.h>
@@ -18,6 +22,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkTable.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
@@ -54,6 +59,7 @@ tcLODView::tcLODView(vtkRenderWindow* window, vtkRenderer* renderer)
   this->Overlay->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   this->Overlay->SetPosition(0.01, 0.985);
   this->OverlayRenderer->AddActor2D(this->Overlay);
+  this->BuildLevelLegend();
   this->RenderedTag =
     this->Renderer->AddObserver(vtkCommand::EndEvent, this, &tcLODView::OnRendered);
 }
@@ -61,6 +67,46 @@ tcLODView::tcLODView(vtkRenderWindow* window, vtkRenderer* renderer)
 tcLODView::~tcLODView()
 {
   this->Renderer->RemoveObserver(this->RenderedTag);
+}
+
+void tcLODView::BuildLevelLegend()
+{
+  this->LevelColors->IndexedLookupOn();
+  this->LevelLegend->SetLookupTable(this->LevelColors);
+  this->LevelLegend->SetTitle("level");
+  this->LevelLegend->UnconstrainedFontSizeOn();
+  this->LevelLegend->GetTitleTextProperty()->SetFontSize(14);
+  this->LevelLegend->GetAnnotationTextProperty()->SetFontSize(14);
+  this->LevelLegend->GetAnnotationTextProperty()->SetColor(1.0, 1.0, 1.0);
+  this->LevelLegend->SetWidth(0.06);
+  this->LevelLegend->SetHeight(0.45);
+  this->LevelLegend->SetPosition(0.92, 0.05);
+  this->LevelLegend->VisibilityOff();
+  this->OverlayRenderer->AddActor2D(this->LevelLegend);
+}
+
+/// The legend's colours: level d is drawn in label colour d + 1 (the shaders' tcLabelColor of
+/// tcLevel + 1, which tcColorMaps::LabelColors gives on the CPU).
+void tcLODView::UpdateLevelLegend(vtkDataObject* atlas)
+{
+  auto* blocks = vtkMultiBlockDataSet::SafeDownCast(atlas);
+  auto* charts = blocks ? vtkTable::SafeDownCast(blocks->GetBlock(0)) : nullptr;
+  vtkDataArray* levels =
+    charts ? vtkArrayDownCast<vtkDataArray>(charts->GetColumnByName(tc::kMaxLevel)) : nullptr;
+  const int finest = levels ? static_cast<int>(levels->GetRange()[1]) : 0;
+  vtkNew<vtkIntArray> labels;
+  labels->InsertNextValue(finest + 1);
+  vtkNew<vtkLookupTable> palette;
+  tcColorMaps::LabelColors(palette, labels);
+  this->LevelColors->ResetAnnotations();
+  this->LevelColors->SetNumberOfTableValues(finest + 1);
+  for (int d = 0; d <= finest; ++d)
+  {
+    this->LevelColors->SetTableValue(d, palette->GetTableValue(d + 1));
+    this->LevelColors->SetAnnotation(vtkVariant(d), std::to_string(d));
+  }
+  this->LevelColors->Build();
+  this->LevelLegend->SetVisibility(this->Mapper->GetColorMode() == tcLODMapper::ColorByLevel);
 }
 
 void tcLODView::SetFrameCallback(std::function<void(const tcLODFrame&)> callback)
@@ -77,6 +123,7 @@ void tcLODView::Show(vtkDataObject* atlas, bool entering)
     this->Mapper->SetInputData(copy);
     this->AtlasSource = atlas;
     this->AtlasTime = atlas->GetMTime();
+    this->UpdateLevelLegend(atlas);
     // The crowd is laid out from the bounds of one instance.
     this->Mapper->SetInstanceMatrices(nullptr);
     this->Mapper->GetBounds(this->Bounds);
@@ -200,6 +247,7 @@ void tcLODView::SetFreezeLOD(bool freeze)
 void tcLODView::SetColorMode(int mode)
 {
   this->Mapper->SetColorMode(mode);
+  this->LevelLegend->SetVisibility(mode == tcLODMapper::ColorByLevel);
   this->Render();
 }
 

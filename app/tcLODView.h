@@ -17,7 +17,9 @@
 
 #include <QString>
 
+#include <vtkLookupTable.h>
 #include <vtkNew.h>
+#include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
@@ -101,6 +103,8 @@ private:
   void UpdateCrowd();
   tcLODFrame Statistics() const;
   void OnRendered(vtkObject*, unsigned long, void*);
+  void BuildLevelLegend();
+  void UpdateLevelLegend(vtkDataObject* atlas);
 
   vtkRenderWindow* Window;
   vtkRenderer* Renderer;
@@ -113,6 +117,8 @@ private:
   vtkSmartPointer<vtkCamera> StageCamera; ///< the other stages' camera, while the LOD stage shows
   vtkNew<vtkRenderer> OverlayRenderer;    ///< layer 1 over the 3-D view: the statistics
   vtkNew<vtkTextActor> Overlay;
+  vtkNew<vtkScalarBarActor> LevelLegend; ///< the level colours, when coloured by level
+  vtkNew<vtkLookupTable> LevelColors;
   vtkDataObject* AtlasSource = nullptr;       ///< the atlas output the mapper's copy was made of
   vtkMTimeType AtlasTime = 0;                 ///< and its modified time then
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 }; ///< the atlas's bounds, one instance

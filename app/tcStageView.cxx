@@ -90,7 +90,10 @@ tcStageView::tcStageView(vtkRenderWindow* window, vtkRenderer* renderer)
   this->Legend->SetNumberOfLabels(5);
   this->Legend->SetWidth(0.08);
   this->Legend->SetHeight(0.5);
-  this->Legend->GetTitleTextProperty()->SetFontSize(12);
+  // Fixed sizes, not ones scaled to the bar's (7-pixel labels in a 750-pixel window).
+  this->Legend->UnconstrainedFontSizeOn();
+  this->Legend->GetTitleTextProperty()->SetFontSize(14);
+  this->Legend->GetLabelTextProperty()->SetFontSize(13);
   this->Renderer->AddActor2D(this->Legend);
   this->SurfaceActor->VisibilityOff();
   this->LineActor->VisibilityOff();

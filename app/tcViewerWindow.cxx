@@ -416,7 +416,7 @@ bool tcViewerWindow::OpenFile(const QString& path, int stage)
   if (ok)
   {
     this->AddRecentFile(path);
-    this->Renderer->ResetCamera();
+    this->CameraView.Apply(this->Renderer); // the default view: ResetCamera alone
     this->RenderWindow->Render();
   }
   return ok;
@@ -617,7 +617,7 @@ void tcViewerWindow::ResetCamera()
     this->LODView->Frame();
     return;
   }
-  this->Renderer->ResetCamera();
+  this->CameraView.Apply(this->Renderer);
 }
 
 bool tcViewerWindow::SaveScreenshot(const QString& path)

@@ -16,6 +16,7 @@
 #ifndef tcViewerWindow_h
 #define tcViewerWindow_h
 
+#include "tcCameraView.h"
 #include "tcStage.h"
 
 #include <QMainWindow>
@@ -82,9 +83,13 @@ public:
   /// Colours the surface by this array of the shown output ("" for a plain surface).
   void SetColorArray(const QString& name);
 
-  /// Fits the camera of the 3-D view to the shown surface; in the LOD stage, looks at the whole
-  /// crowd from the front (+Z) and 30 degrees to the side, 35 degrees above its ground plane.
+  /// Fits the camera of the 3-D view to the shown surface, from SetCameraView's direction; in
+  /// the LOD stage, looks at the whole crowd from the front (+Z) and 30 degrees to the side,
+  /// 35 degrees above its ground plane.
   void ResetCamera();
+
+  /// The direction, turns and zoom every later ResetCamera (and file opened) frames with.
+  void SetCameraView(const tcCameraView& view) { this->CameraView = view; }
 
   /// Renders and saves the whole window as PNG.
   bool SaveScreenshot(const QString& path);
@@ -152,6 +157,7 @@ private:
   QLabel* Info = nullptr;
   QMenu* RecentMenu = nullptr;
 
+  tcCameraView CameraView;
   QString FileName;
   QString Error;
   int CurrentStage = tcStage::Input;

@@ -322,3 +322,32 @@ def test_cad_creases_are_drawn_sharp(tmp_path):
     # Shading fitted across the creases differs from the baseline by over 20 levels at 8340
     # pixels, which vtkImageDifference's threshold lets through.
     assert differing_pixels(shot, baseline, 20) < 1000
+
+
+@pytest.mark.parametrize("mesh,stage", [("cad/rotor.off", "features"),
+                                        ("static_small/homer.off", "base")])
+def test_iso_view_screenshots_of_shared_meshes(tmp_path, mesh, stage):
+    # A CAD part seen from the front is edge-on; --view iso looks from the +X+Y+Z corner.
+    path = pathlib.Path(os.environ.get("TRICHART_SHARED_DATA", "")) / mesh
+    if not path.is_file():
+        pytest.skip(f"{path} is absent (../shared/data not beside the checkout)")
+    shot = tmp_path / "iso.png"
+    r = viewer(path, "--stage", stage, "--view", "iso", "--screenshot", shot)
+    assert r.returncode == 0, r.stderr
+    name = pathlib.Path(mesh).name.split(".")[0]
+    ok, detail = compare_with_baseline(shot, DATA / "baselines" / f"TestViewer_{stage}_{name}_iso.png")
+    assert ok, detail
+    # The turns and zoom move the picture; the default view is the front one.
+    turned = tmp_path / "turned.png"
+    r = viewer(path, "--stage", stage, "--view", "iso", "--azimuth", "40", "--elevation", "-20",
+               "--zoom", "1.5", "--screenshot", turned)
+    assert r.returncode == 0, r.stderr
+    assert differing_pixels(shot, turned, 20) > 10000
+
+
+@pytest.mark.parametrize("option,value", [("--view", "diagonal"), ("--azimuth", "x"),
+                                          ("--elevation", "120"), ("--zoom", "0"),
+                                          ("--zoom", "nan")])
+def test_bad_camera_options_are_refused(option, value):
+    r = viewer(BUNNY, option, value, "--screenshot", "x.png")
+    assert r.returncode == 2 and option in r.stderr, r.stderr
