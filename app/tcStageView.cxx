@@ -123,8 +123,11 @@ void tcStageView::UseInteractor(vtkRenderWindowInteractor* interactor)
 void tcStageView::Show(int stage, const tcStageOutput& output)
 {
   this->Stage = stage;
-  // Feature-like lines stand out; the many edges of a reconstruction must not hide its colours.
-  this->LineActor->GetProperty()->SetLineWidth(stage == tcStage::Reconstruction ? 1.0 : 2.0);
+  // Feature-like lines stand out; the many edges of a reconstruction (every grid triangle's)
+  // must not hide its colours: thin and faint.
+  const bool grid = stage == tcStage::Reconstruction;
+  this->LineActor->GetProperty()->SetLineWidth(grid ? 1.0 : 2.0);
+  this->LineActor->GetProperty()->SetOpacity(grid ? 0.25 : 1.0);
   this->SurfaceActor->GetProperty()->SetOpacity(stage == tcStage::Base ? 0.6 : 1.0);
   const bool split = this->Window->HasRenderer(this->AtlasRenderer);
   if (stage == tcStage::Atlas)
