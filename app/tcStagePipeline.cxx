@@ -77,12 +77,7 @@ bool tcStagePipeline::IsAtlasFile(const std::string& path)
 {
   // By extension first, so that a damaged .exr is reported by the atlas reader (which says what
   // is wrong with it) rather than refused by the mesh reader as an unknown format.
-  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
-  for (char& c : extension)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension == ".exr" || tcAtlasReader::CanReadFile(path.c_str());
+  return tcAtlasWriter::IsAtlasFileName(path.c_str()) || tcAtlasReader::CanReadFile(path.c_str());
 }
 
 void tcStagePipeline::Open(const std::string& path)

@@ -5,6 +5,7 @@
 
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
+#include "tc/common/file_names.h"
 #include "tc/io/off_io.h"
 #include "tc/io/scene_io.h"
 #include "tc/io/soup_io.h"
@@ -42,12 +43,6 @@ std::string Lower(std::string s)
   return s;
 }
 
-bool EndsWith(const std::string& s, const std::string& suffix)
-{
-  return s.size() >= suffix.size() &&
-    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// The mesh formats read without Assimp, by extension (no one ends another after a dot), in the
 /// order messages list them.
 constexpr const char* kMeshExtensions[] = { "ply", "ply.gz", "obj", "stl", "off", "vtp", "vtk" };
@@ -59,7 +54,7 @@ std::string FormatOf(const std::string& fileName)
   const std::string name = Lower(fileName);
   for (const char* ext : kMeshExtensions)
   {
-    if (EndsWith(name, std::string(".") + ext))
+    if (tc::hasExtension(name, std::string(".") + ext))
     {
       return ext;
     }

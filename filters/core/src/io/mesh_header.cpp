@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/mesh_header.h"
 
+#include "tc/common/file_names.h"
+
 #include <zlib.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -158,22 +158,19 @@ MeshFileCounts objCounts(const std::string& path)
 
 MeshFileCounts readMeshFileCounts(const std::string& path)
 {
-  std::string name = path;
-  std::transform(name.begin(), name.end(), name.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (endsWith(name, ".ply") || endsWith(name, ".ply.gz"))
+  if (hasExtension(path, ".ply") || hasExtension(path, ".ply.gz"))
   {
     return plyCounts(path);
   }
-  if (endsWith(name, ".off"))
+  if (hasExtension(path, ".off"))
   {
     return offCounts(path);
   }
-  if (endsWith(name, ".stl"))
+  if (hasExtension(path, ".stl"))
   {
     return stlCounts(path);
   }
-  if (endsWith(name, ".obj"))
+  if (hasExtension(path, ".obj"))
   {
     return objCounts(path);
   }

@@ -2,6 +2,7 @@
 #include "tc/io/scene_io.h"
 
 #include "tc/common/errors.h"
+#include "tc/common/file_names.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/ProgressHandler.hpp>
@@ -10,7 +11,6 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -114,11 +114,6 @@ void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
   }
 }
 
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 /// Whether the object-to-object connections (C: "OO",child,parent) of an ASCII FBX file form
 /// a cycle: Assimp 5.2's FBX converter follows them depth first without marks, and a model
 /// connected to itself (from the scene fuzz target) overflowed the stack. Binary FBX stores
@@ -244,13 +239,12 @@ const char* sceneExtensions()
 
 bool isSceneFile(const std::string& path)
 {
-  const std::string name = lower(path);
   std::istringstream extensions(kExtensions);
   std::string ext;
   while (extensions >> ext)
   {
     ext = "." + ext;
-    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
+    if (path.size() > ext.size() && hasExtension(path, ext)) // a name, not the extension alone
     {
       return true;
     }
