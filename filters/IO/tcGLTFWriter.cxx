@@ -30,7 +30,7 @@ int tcGLTFWriter::FillInputPortInformation(int, vtkInformation* info)
 
 void tcGLTFWriter::WriteData()
 {
-  this->LodTriangles.clear(), this->LodErrors.clear(), this->LodCoverage.clear();
+  this->Lods.clear();
   if (this->FileName.empty())
   {
     vtkErrorMacro("No glTF file name was set.");
@@ -55,13 +55,7 @@ void tcGLTFWriter::WriteData()
   options.viewportHeight = this->ViewportHeight;
   try
   {
-    for (const tc::GltfLod& lod :
-      tc::writeGltf(this->FileName, atlas, options, tcvtk::MakeProgress(this)))
-    {
-      this->LodTriangles.push_back(static_cast<vtkIdType>(lod.triangles));
-      this->LodErrors.push_back(lod.error);
-      this->LodCoverage.push_back(lod.screenCoverage);
-    }
+    this->Lods = tc::writeGltf(this->FileName, atlas, options, tcvtk::MakeProgress(this));
   }
   catch (const std::exception& e)
   {
@@ -77,17 +71,17 @@ bool tcGLTFWriter::IsGLTFFileName(const char* path)
 
 vtkIdType tcGLTFWriter::GetLodTriangles(int lod) const
 {
-  return lod >= 0 && lod < this->GetNumberOfLods() ? this->LodTriangles[lod] : -1;
+  return lod >= 0 && lod < this->GetNumberOfLods() ? this->Lods[lod].triangles : -1;
 }
 
 double tcGLTFWriter::GetLodError(int lod) const
 {
-  return lod >= 0 && lod < this->GetNumberOfLods() ? this->LodErrors[lod] : -1.0;
+  return lod >= 0 && lod < this->GetNumberOfLods() ? this->Lods[lod].error : -1.0;
 }
 
 double tcGLTFWriter::GetLodScreenCoverage(int lod) const
 {
-  return lod >= 0 && lod < this->GetNumberOfLods() ? this->LodCoverage[lod] : -1.0;
+  return lod >= 0 && lod < this->GetNumberOfLods() ? this->Lods[lod].screenCoverage : -1.0;
 }
 
 void tcGLTFWriter::PrintSelf(ostream& os, vtkIndent indent)

@@ -82,7 +82,7 @@ public:
 
   ///@{
   /// After a write: the LODs written, and each one's triangles and largest error (input units).
-  int GetNumberOfLods() const { return static_cast<int>(this->LodTriangles.size()); }
+  int GetNumberOfLods() const { return static_cast<int>(this->Lods.size()); }
   vtkIdType GetLodTriangles(int lod) const;
   double GetLodError(int lod) const;
   double GetLodScreenCoverage(int lod) const;
@@ -109,9 +109,7 @@ private:
   double ErrorPixels = tc::GltfExportOptions{}.errorPixels;
   double ViewportHeight = tc::GltfExportOptions{}.viewportHeight;
   double InputDiagonal = 0.0;
-  std::vector<vtkIdType> LodTriangles;
-  std::vector<double> LodErrors;
-  std::vector<double> LodCoverage;
+  std::vector<tc::GltfLod> Lods; ///< of the last write
 };
 
 #endif
