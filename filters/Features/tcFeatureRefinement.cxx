@@ -15,6 +15,8 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <utility>
+
 vtkStandardNewMacro(tcFeatureRefinement);
 
 tcFeatureRefinement::tcFeatureRefinement()
@@ -77,6 +79,14 @@ int tcFeatureRefinement::RequestData(
   {
     crest.clear();
   }
+  std::vector<uint8_t> seams;
+  if (this->SeamLines &&
+    !tcvtk::ReadOptionalIntArray(
+      input->GetCellData(), tc::kSeamSides, mesh.numTriangles(), seams, error))
+  {
+    vtkErrorMacro("Cannot refine features: " << error << ".");
+    return 0;
+  }
 
   // 4. Refine.
   tc::FeatureRefinementOptions options;
@@ -91,6 +101,7 @@ int tcFeatureRefinement::RequestData(
   options.straightenLines = this->StraightenLines;
   options.creaseAngle = this->CreaseAngle;
   options.creaseLineAngle = this->CreaseLineAngle;
+  options.seamSides = std::move(seams);
   options.cornerRings = this->CornerRings;
   options.cornerFraction = this->CornerFraction;
   tc::FeatureRefinementResult result;
@@ -140,6 +151,7 @@ void tcFeatureRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StraightenLines: " << this->StraightenLines << "\n";
   os << indent << "CreaseAngle: " << this->CreaseAngle << "\n";
   os << indent << "CreaseLineAngle: " << this->CreaseLineAngle << "\n";
+  os << indent << "SeamLines: " << this->SeamLines << "\n";
   os << indent << "CornerRings: " << this->CornerRings << "\n";
   os << indent << "CornerFraction: " << this->CornerFraction << "\n";
 }

@@ -106,6 +106,14 @@ public:
   ///@}
 
   ///@{
+  /// Texture seams join the feature lines: the sides the preparation marked in SeamSides (where
+  /// texture coordinates or colours jump), so that no chart straddles a seam.
+  vtkSetMacro(SeamLines, bool);
+  vtkGetMacro(SeamLines, bool);
+  vtkBooleanMacro(SeamLines, bool);
+  ///@}
+
+  ///@{
   /// Vertices where three or more feature lines meet are corners too.
   vtkSetMacro(JunctionCorners, bool);
   vtkGetMacro(JunctionCorners, bool);
@@ -145,6 +153,7 @@ private:
   bool StraightenLines = tc::FeatureRefinementOptions{}.straightenLines;
   double CreaseAngle = tc::FeatureRefinementOptions{}.creaseAngle;
   double CreaseLineAngle = tc::FeatureRefinementOptions{}.creaseLineAngle;
+  bool SeamLines = true;
   int CornerRings = tc::FeatureRefinementOptions{}.cornerRings;
   double CornerFraction = tc::FeatureRefinementOptions{}.cornerFraction;
 };

@@ -7,6 +7,7 @@
 #include "tc/common/array_names.h"
 #include "tc/gim/geometry_images.h"
 
+#include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -52,9 +53,11 @@ namespace
 {
 /// The point arrays to resample, each with its components; false, saying which is missing or
 /// of the wrong size in `error`.
-bool ReadResampledArrays(vtkPointData* pd, vtkIdType np, const std::vector<std::string>& names,
+bool ReadResampledArrays(vtkPolyData* input, const std::vector<std::string>& names,
   std::vector<tc::GeometryImageAttribute>& extra, std::string& error)
 {
+  vtkPointData* pd = input->GetPointData();
+  const vtkIdType np = input->GetNumberOfPoints();
   for (const std::string& name : names)
   {
     vtkDataArray* array = pd->GetArray(name.c_str());
@@ -67,6 +70,14 @@ bool ReadResampledArrays(vtkPointData* pd, vtkIdType np, const std::vector<std::
     attribute.name = name;
     attribute.components = array->GetNumberOfComponents();
     if (!tcvtk::ReadArray(pd, name.c_str(), np, attribute.components, attribute.values, error))
+    {
+      return false;
+    }
+    // Values per triangle corner where the input's copies disagreed (a seam), if it has them.
+    const std::string corners = name + tc::kCornerValuesSuffix;
+    if (input->GetCellData()->GetArray(corners.c_str()) &&
+      !tcvtk::ReadArray(input->GetCellData(), corners.c_str(), input->GetNumberOfCells(),
+        3 * attribute.components, attribute.cornerValues, error))
     {
       return false;
     }
@@ -113,7 +124,7 @@ int tcGeometryImages::RequestData(
     return 0;
   }
   std::vector<tc::GeometryImageAttribute> extra;
-  if (!ReadResampledArrays(input->GetPointData(), np, this->ResampledArrays, extra, error))
+  if (!ReadResampledArrays(input, this->ResampledArrays, extra, error))
   {
     vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;

@@ -16,6 +16,8 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <string>
+
 vtkStandardNewMacro(tcPathTracing);
 
 tcPathTracing::tcPathTracing()
@@ -62,9 +64,45 @@ void CopyPointData(vtkPolyData* input, const tc::PatchMesh& patches, vtkPointDat
   outPoints->AddArray(tcvtk::MakeArray(tc::kSteinerParameter, 1, steinerParameter));
 }
 
-/// Cell data of the split mesh: that of the input triangle each piece came from, then PatchId
-/// and InputCellId.
-void CopyCellData(vtkPolyData* input, const tc::PatchMesh& patches, vtkCellData* outCells)
+/// True for a cell array of corner values ("<name>Corners", 3 x k components).
+bool IsCornerArray(vtkDataArray* array)
+{
+  const std::string suffix = tc::kCornerValuesSuffix;
+  const std::string name = array && array->GetName() ? array->GetName() : "";
+  return name.size() > suffix.size() &&
+    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+    array->GetNumberOfComponents() % 3 == 0;
+}
+
+/// Corner-value arrays recomputed at the pieces' own corners (tc::pieceCornerValues); the seam
+/// sides of the input triangles mean nothing for their pieces and are left out.
+void ReplaceCornerArrays(vtkCellData* inCells, const tc::TriMesh& mesh,
+  const tc::PatchMesh& patches, vtkCellData* outCells)
+{
+  outCells->RemoveArray(tc::kSeamSides);
+  for (int a = 0; a < inCells->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = inCells->GetArray(a);
+    if (!IsCornerArray(array) || array->GetNumberOfTuples() != mesh.numTriangles())
+    {
+      continue;
+    }
+    const int n = array->GetNumberOfComponents();
+    std::vector<double> values(static_cast<size_t>(mesh.numTriangles()) * n);
+    for (vtkIdType f = 0; f < mesh.numTriangles(); ++f)
+    {
+      array->GetTuple(f, &values[static_cast<size_t>(f) * n]);
+    }
+    const std::vector<double> pieces = tc::pieceCornerValues(patches, mesh, values, n / 3);
+    outCells->RemoveArray(array->GetName());
+    outCells->AddArray(tcvtk::MakeArray(array->GetName(), n, pieces));
+  }
+}
+
+/// Cell data of the split mesh: that of the input triangle each piece came from (corner values
+/// at the piece's corners), then PatchId and InputCellId.
+void CopyCellData(
+  vtkPolyData* input, const tc::TriMesh& mesh, const tc::PatchMesh& patches, vtkCellData* outCells)
 {
   vtkCellData* inCells = input->GetCellData();
   const vtkIdType nf = patches.mesh.numTriangles();
@@ -73,6 +111,7 @@ void CopyCellData(vtkPolyData* input, const tc::PatchMesh& patches, vtkCellData*
   {
     outCells->CopyData(inCells, patches.inputTriangle[static_cast<size_t>(f)], f);
   }
+  ReplaceCornerArrays(inCells, mesh, patches, outCells);
   outCells->AddArray(tcvtk::MakeIntArray(tc::kPatchId, patches.patchId));
   outCells->AddArray(tcvtk::MakeIntArray(tc::kInputCellId, patches.inputTriangle));
   outCells->SetActiveScalars(tc::kPatchId);
@@ -160,7 +199,15 @@ int tcPathTracing::RequestData(
   // 5. The split mesh with its point, cell and field data; the paths as polylines.
   tcvtk::FromTriMesh(patches.mesh, output);
   CopyPointData(input, patches, output->GetPointData());
-  CopyCellData(input, patches, output->GetCellData());
+  try
+  {
+    CopyCellData(input, mesh, patches, output->GetCellData());
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot trace paths: " << e.what());
+    return 0;
+  }
   AddPathFields(input, base, patches, output->GetFieldData());
   PathPolylines(base, patches, paths);
   return 1;

@@ -4,9 +4,11 @@
 #include "tcMeshConversion.h"
 
 #include "tc/common/array_names.h"
+#include "tc/prep/corner_attributes.h"
 #include "tc/prep/mesh_preparation.h"
 
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkInformation.h>
@@ -82,6 +84,61 @@ void AddPreparationArrays(vtkPolyData* input, const tc::PreparationResult& resul
   cd->AddArray(tcvtk::MakeIntArray(tc::kNonManifoldEdge, result.nonManifoldEdge));
   cd->AddArray(tcvtk::MakeIntArray(tc::kComponentId, result.componentId));
   output->GetFieldData()->PassData(input->GetFieldData());
+}
+/// Corner values (tc/prep/corner_attributes.h) of the input's point arrays of floats or bytes
+/// (texture coordinates, colours; not ids or labels) that the merge made discontinuous, as cell
+/// arrays "<name>Corners", and the seam sides; returns the report line ("" if none).
+std::string AddCornerArrays(vtkPolyData* input, const tc::PolygonSoup& soup,
+  const tc::PreparationResult& result, vtkPolyData* output)
+{
+  vtkPointData* pd = input->GetPointData();
+  std::vector<int64_t> corners;
+  std::vector<tc::CornerAttribute> attributes;
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    const int type = array ? array->GetDataType() : VTK_VOID;
+    if (!array || !array->GetName() ||
+      (type != VTK_FLOAT && type != VTK_DOUBLE && type != VTK_UNSIGNED_CHAR) ||
+      array->GetNumberOfTuples() != soup.numPoints() || array->GetNumberOfComponents() > 64)
+    {
+      continue;
+    }
+    const int32_t n = array->GetNumberOfComponents();
+    std::vector<double> values(static_cast<size_t>(soup.numPoints()) * n);
+    for (vtkIdType i = 0; i < soup.numPoints(); ++i)
+    {
+      array->GetTuple(i, &values[static_cast<size_t>(i) * n]);
+    }
+    if (corners.empty())
+    {
+      corners = tc::cornerInputPoints(soup, result);
+    }
+    if (tc::mergeSplitsAttribute(values, n, corners, result))
+    {
+      attributes.push_back(tc::makeCornerAttribute(array->GetName(), values, n, corners, result));
+    }
+  }
+  if (attributes.empty())
+  {
+    return "";
+  }
+  std::string names;
+  for (const tc::CornerAttribute& a : attributes)
+  {
+    output->GetCellData()->AddArray(
+      tcvtk::MakeArray((a.name + tc::kCornerValuesSuffix).c_str(), 3 * a.components, a.values));
+    names += (names.empty() ? "" : ", ") + a.name;
+  }
+  const std::vector<uint8_t> seams = tc::seamSides(result.mesh.triangles, attributes);
+  output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSeamSides, seams));
+  int64_t sides = 0;
+  for (const uint8_t s : seams)
+  {
+    sides += (s & 1) + ((s >> 1) & 1) + ((s >> 2) & 1);
+  }
+  return "kept the values of " + names + " at each triangle corner (" + std::to_string(sides / 2) +
+    " seam edges)\n";
 }
 } // namespace
 
@@ -162,7 +219,9 @@ int tcMeshPreparation::RequestData(
     inputCells[f] = result.inputCellId[f] < 0 ? -1 : polygonCell[result.inputCellId[f]];
   }
   AddPreparationArrays(input, result, inputCells, output);
+  const std::string seams = AddCornerArrays(input, soup, result, output);
   this->RecordReport(result.report, options, ignored);
+  this->Report += seams;
   tcvtk::SetTextField(output->GetFieldData(), tc::kPreparationReport, this->Report);
   if (result.report.nonManifoldEdges + result.report.nonManifoldVertices > 0 &&
     !this->SplitNonManifold)

@@ -21,9 +21,10 @@ uint64_t pairKey(int64_t a, int64_t b)
   return (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint64_t>(std::max(a, b));
 }
 
-// The crease edges that no kept line holds, as segment node pairs in edge-table order.
-std::vector<int64_t> freeCreaseSegments(const EdgeTable& edges, const std::vector<double>& dihedral,
-  double angle, const FeatureRefinementResult& result)
+// The edges `keep` accepts that no kept line holds, as segment node pairs in edge-table order.
+template <class Keep>
+std::vector<int64_t> freeSegments(
+  const EdgeTable& edges, const FeatureRefinementResult& result, Keep&& keep)
 {
   std::unordered_set<uint64_t> onLine;
   for (int64_t l = 0; l < result.numLines(); ++l)
@@ -37,7 +38,7 @@ std::vector<int64_t> freeCreaseSegments(const EdgeTable& edges, const std::vecto
   for (int64_t e = 0; e < edges.numEdges(); ++e)
   {
     const int64_t a = edges.vertices[2 * e], b = edges.vertices[2 * e + 1];
-    if (edges.valence(e) == 2 && dihedral[e] >= angle && !onLine.count(pairKey(a, b)))
+    if (edges.valence(e) == 2 && keep(e) && !onLine.count(pairKey(a, b)))
     {
       segments.push_back(a);
       segments.push_back(b);
@@ -76,6 +77,21 @@ Polylines splitAt(const Polylines& chains, const std::vector<uint8_t>& stop)
   }
   return out;
 }
+// The chains of `segments`, cut at the vertices of the kept lines, appended to the lines when
+// they have at least minEdges edges.
+void appendChains(const TriMesh& mesh, const std::vector<int64_t>& segments,
+  const std::vector<double>& meanCurvature, int minEdges, FeatureRefinementResult& result)
+{
+  const Polylines chains = splitAt(chainSegments(segments, mesh.numPoints()), result.featureVertex);
+  for (size_t c = 0; c + 1 < chains.offsets.size(); ++c)
+  {
+    const int64_t begin = chains.offsets[c], end = chains.offsets[c + 1];
+    if (end - begin - 1 >= minEdges)
+    {
+      appendLine(mesh, chains, begin, end, meanCurvature, result);
+    }
+  }
+}
 } // namespace
 
 void addCreaseLines(const TriMesh& mesh, const EdgeTable& edges,
@@ -86,18 +102,34 @@ void addCreaseLines(const TriMesh& mesh, const EdgeTable& edges,
   {
     return;
   }
+  const double angle = options.creaseLineAngle * kPi / 180.0;
   const std::vector<int64_t> segments =
-    freeCreaseSegments(edges, dihedral, options.creaseLineAngle * kPi / 180.0, result);
-  const Polylines chains = splitAt(chainSegments(segments, mesh.numPoints()), result.featureVertex);
-  for (size_t c = 0; c + 1 < chains.offsets.size(); ++c)
+    freeSegments(edges, result, [&](int64_t e) { return dihedral[e] >= angle; });
+  appendChains(mesh, segments, meanCurvature, std::max(1, options.creaseLineEdges), result);
+}
+
+void addSeamLines(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& meanCurvature, const FeatureRefinementOptions& options,
+  FeatureRefinementResult& result)
+{
+  if (options.seamSides.empty())
   {
-    const int64_t begin = chains.offsets[c], end = chains.offsets[c + 1];
-    if (end - begin - 1 < std::max(1, options.creaseLineEdges))
-    {
-      continue;
-    }
-    appendLine(mesh, chains, begin, end, meanCurvature, result);
+    return;
   }
+  std::vector<uint8_t> seamEdge(static_cast<size_t>(edges.numEdges()), 0);
+  for (size_t f = 0; f < options.seamSides.size(); ++f)
+  {
+    for (size_t k = 0; k < 3; ++k)
+    {
+      if (options.seamSides[f] & (1u << k))
+      {
+        seamEdge[static_cast<size_t>(edges.faceEdges[3 * f + k])] = 1;
+      }
+    }
+  }
+  const std::vector<int64_t> segments =
+    freeSegments(edges, result, [&](int64_t e) { return seamEdge[static_cast<size_t>(e)] != 0; });
+  appendChains(mesh, segments, meanCurvature, 1, result);
 }
 } // namespace refinement
 } // namespace detail

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file crease_lines.h
-/// Crease chains joined to the feature lines (an addition to Feng et al. 2010, section 4.2):
-/// the cluster boundaries of the spectral clusters follow the creases of a mechanical part only
-/// where a boundary happens to run along one, and a part has far more creases than a fixed
-/// number of clusters has boundaries. The sharp edges themselves locate the creases exactly.
+/// Crease and seam chains joined to the feature lines (an addition to Feng et al. 2010,
+/// section 4.2): the cluster boundaries of the spectral clusters follow the creases of a mechanical
+/// part only where a boundary happens to run along one, and a part has far more creases than a
+/// fixed number of clusters has boundaries. The sharp edges themselves locate the creases exactly.
 #pragma once
 
 #include "tc/common/mesh.h"
@@ -30,6 +30,13 @@ namespace refinement
 void addCreaseLines(const TriMesh& mesh, const EdgeTable& edges,
   const std::vector<double>& dihedral, const std::vector<double>& meanCurvature,
   const FeatureRefinementOptions& options, FeatureRefinementResult& result);
+/// Appends to result's lines the seam chains: the manifold edges marked in
+/// options.seamSides (tc::seamSides) that no kept line holds, chained and cut as the crease
+/// chains are; every chain is kept, however short, since a texture seam inside a chart is wrong
+/// at any length. No-op when options.seamSides is empty.
+void addSeamLines(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& meanCurvature, const FeatureRefinementOptions& options,
+  FeatureRefinementResult& result);
 } // namespace refinement
 } // namespace detail
 } // namespace tc

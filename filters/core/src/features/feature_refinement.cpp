@@ -29,7 +29,7 @@ using detail::kPi;
 
 void validate(const TriMesh& mesh, const std::vector<int32_t>& clusterId,
   const std::vector<double>& meanCurvature, const std::vector<double>& faceMeanCurvature,
-  const std::vector<uint8_t>& crestVertex)
+  const std::vector<uint8_t>& crestVertex, const std::vector<uint8_t>& seamSides)
 {
   const size_t nv = static_cast<size_t>(mesh.numPoints());
   const size_t nf = static_cast<size_t>(mesh.numTriangles());
@@ -54,6 +54,10 @@ void validate(const TriMesh& mesh, const std::vector<int32_t>& clusterId,
   if (meanCurvature.size() != nv)
   {
     mismatch("meanCurvature", meanCurvature.size(), nv, "vertices");
+  }
+  if (!seamSides.empty() && seamSides.size() != nf)
+  {
+    mismatch("seamSides", seamSides.size(), nf, "triangles (or none)");
   }
   if (!crestVertex.empty() && crestVertex.size() != nv)
   {
@@ -216,7 +220,7 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   const std::vector<uint8_t>& crestVertex, const FeatureRefinementOptions& options,
   const Progress& progress)
 {
-  validate(mesh, clusterId, meanCurvature, faceMeanCurvature, crestVertex);
+  validate(mesh, clusterId, meanCurvature, faceMeanCurvature, crestVertex, options.seamSides);
   const int64_t nv = mesh.numPoints();
   const int64_t nf = mesh.numTriangles();
   FeatureRefinementResult result;
@@ -261,6 +265,7 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   result.candidateSegments = static_cast<int64_t>(segments.offsets.size()) - 1;
   keepFeatureSegments(mesh, segments, meanCurvature, result);
   addCreaseLines(mesh, edges, dihedral, meanCurvature, options, result);
+  addSeamLines(mesh, edges, meanCurvature, options, result);
   progress.report(0.75);
 
   // 5. Corners.

@@ -290,7 +290,7 @@ Atlas buildGeometryImages(const PatchMesh& patches, const BaseComplexResult& bas
   checkOptions(options);
   const Layout L = checkInput(patches, base);
   checkPointArrays(L, normals, meanCurvature);
-  checkExtraAttributes(extra, L.numPoints);
+  checkExtraAttributes(extra, L.numPoints, patches.mesh.numTriangles());
   const SampleLayout S = sampleLayout(extra);
   Atlas atlas = emptyAtlas(patches, extra);
   const std::vector<double> shared = sharedNormals(patches.mesh, L, normals);

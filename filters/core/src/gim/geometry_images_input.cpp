@@ -323,7 +323,8 @@ void checkPointArrays(
   }
 }
 
-void checkExtraAttributes(const std::vector<GeometryImageAttribute>& extra, int64_t numPoints)
+void checkExtraAttributes(
+  const std::vector<GeometryImageAttribute>& extra, int64_t numPoints, int64_t numTriangles)
 {
   for (size_t a = 0; a < extra.size(); ++a)
   {
@@ -347,7 +348,15 @@ void checkExtraAttributes(const std::vector<GeometryImageAttribute>& extra, int6
         num(kMaxComponents) + " components and #points x components (" + num(numPoints) + " x " +
         num(x.components) + ") values; it has " + num(x.values.size()));
     }
-    if (!std::all_of(x.values.begin(), x.values.end(), [](double v) { return std::isfinite(v); }))
+    if (!x.cornerValues.empty() &&
+      static_cast<int64_t>(x.cornerValues.size()) != 3 * numTriangles * x.components)
+    {
+      throw InputError(kWhere + "the corner values of extra attribute \"" + x.name +
+        "\" need 3 x #triangles x components (" + num(numTriangles) + " triangles) values or none");
+    }
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (!std::all_of(x.values.begin(), x.values.end(), finite) ||
+      !std::all_of(x.cornerValues.begin(), x.cornerValues.end(), finite))
     {
       throw InputError(kWhere + "extra attribute \"" + x.name + "\" has a non-finite value");
     }

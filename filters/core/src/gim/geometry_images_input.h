@@ -54,7 +54,8 @@ void checkPointArrays(
 /// Checks the extra attributes: named, unique, 1 .. kMaxComponents components, #V' x components
 /// finite values each.
 /// @throws InputError
-void checkExtraAttributes(const std::vector<GeometryImageAttribute>& extra, int64_t numPoints);
+void checkExtraAttributes(
+  const std::vector<GeometryImageAttribute>& extra, int64_t numPoints, int64_t numTriangles);
 
 /// Whether side k of base face c runs along its base edge's path (lower base vertex first).
 inline bool sideRunsForward(

@@ -7,6 +7,8 @@
 #include "tc/common/errors.h"
 #include "tc/common/parallel.h"
 
+#include <array>
+
 namespace tc
 {
 namespace detail
@@ -261,4 +263,73 @@ std::string Tracer::pointName(int32_t p) const
 }
 } // namespace tracing
 } // namespace detail
+} // namespace tc
+
+namespace tc
+{
+namespace
+{
+/// Weights of point p of the traced mesh over the corners of input triangle `tri`: 1 at its own
+/// corner, or (1 - t, t) at the ends of the side its Steiner point lies on.
+std::array<double, 3> cornerWeights(
+  const PatchMesh& patches, int64_t inputPoints, const int32_t* tri, int64_t p)
+{
+  std::array<double, 3> w{ 0.0, 0.0, 0.0 };
+  auto corner = [&](int64_t v)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] == v)
+      {
+        return k;
+      }
+    }
+    throw InputError("pieceCornerValues: a piece has a corner outside its input triangle; pass "
+                     "the mesh that tracePaths was given");
+  };
+  if (p < inputPoints)
+  {
+    w[static_cast<size_t>(corner(p))] = 1.0;
+    return w;
+  }
+  const size_t s = static_cast<size_t>(p - inputPoints);
+  const double t = patches.steinerParameter[s];
+  w[static_cast<size_t>(corner(patches.steinerEdge[2 * s]))] += 1.0 - t;
+  w[static_cast<size_t>(corner(patches.steinerEdge[2 * s + 1]))] += t;
+  return w;
+}
+} // namespace
+
+std::vector<double> pieceCornerValues(const PatchMesh& patches, const TriMesh& mesh,
+  const std::vector<double>& values, int32_t components)
+{
+  const size_t n = static_cast<size_t>(components);
+  if (components < 1 || values.size() != mesh.triangles.size() * n ||
+    patches.inputTriangle.size() != patches.mesh.triangles.size() / 3)
+  {
+    throw InputError("pieceCornerValues: the corner values must hold 3 x " +
+      std::to_string(components) + " values per triangle of the traced mesh");
+  }
+  const int64_t inputPoints =
+    patches.mesh.numPoints() - static_cast<int64_t>(patches.steinerParameter.size());
+  std::vector<double> out(patches.mesh.triangles.size() * n, 0.0);
+  for (size_t f = 0; f < patches.inputTriangle.size(); ++f)
+  {
+    const size_t t = static_cast<size_t>(patches.inputTriangle[f]);
+    const int32_t* tri = &mesh.triangles[3 * t];
+    for (size_t k = 0; k < 3; ++k)
+    {
+      const std::array<double, 3> w =
+        cornerWeights(patches, inputPoints, tri, patches.mesh.triangles[3 * f + k]);
+      for (size_t r = 0; r < 3; ++r)
+      {
+        for (size_t x = 0; w[r] != 0.0 && x < n; ++x)
+        {
+          out[(3 * f + k) * n + x] += w[r] * values[(3 * t + r) * n + x];
+        }
+      }
+    }
+  }
+  return out;
+}
 } // namespace tc

@@ -229,11 +229,63 @@ std::vector<double> chartNormals(
   return own;
 }
 
+/// Per extra attribute with corner values, the values of chart c's points as its own triangles
+/// give them (#Vp x components; empty for an attribute without corner values): along a seam,
+/// which the feature stage makes a chart side, each chart keeps the values of its own side.
+std::vector<std::vector<double>> chartCornerValues(
+  const SamplingInput& in, const PatchParameterization& p)
+{
+  std::vector<std::vector<double>> own(in.extra.size());
+  const std::vector<int32_t>& triangles = in.patches.mesh.triangles;
+  for (size_t a = 0; a < in.extra.size(); ++a)
+  {
+    const GeometryImageAttribute& x = in.extra[a];
+    if (x.cornerValues.empty())
+    {
+      continue;
+    }
+    const size_t n = static_cast<size_t>(x.components);
+    own[a].assign(p.points.size() * n, 0.0);
+    std::vector<uint8_t> done(p.points.size(), 0);
+    for (size_t f = 0; f < p.meshTriangles.size(); ++f)
+    {
+      const size_t t = static_cast<size_t>(p.meshTriangles[f]);
+      for (size_t k = 0; k < 3; ++k)
+      {
+        const size_t l = static_cast<size_t>(patchIndex(p, triangles[3 * t + k]));
+        if (!done[l])
+        {
+          done[l] = 1;
+          std::copy_n(&x.cornerValues[(3 * t + k) * n], n, &own[a][l * n]);
+        }
+      }
+    }
+  }
+  return own;
+}
+
+/// The corner-valued extras of a side sample between chart points a and b (patch indices) at
+/// tau: from the chart's own values.
+void ownSideValues(const SamplingInput& in, const std::vector<std::vector<double>>& ownExtra,
+  int32_t a, int32_t b, double tau, float* out)
+{
+  for (size_t at = 0; at < in.extra.size(); ++at)
+  {
+    const std::vector<double>& own = ownExtra[at];
+    const int64_t n = in.extra[at].components;
+    for (int64_t x = 0; x < n && !own.empty(); ++x)
+    {
+      out[in.S.offset[at + 2] + x] =
+        static_cast<float>((1.0 - tau) * own[a * n + x] + tau * own[b * n + x]);
+    }
+  }
+}
+
 /// Sample t of side k of chart c at its grid level (n = 2^level per side): the path's floats,
 /// with the normal interpolated from the chart's own (one-sided) normals along a feature side.
 void copySideSample(const SamplingInput& in, const PatchParameterization& p, const AtlasChart& ch,
   int32_t c, int32_t k, int64_t t, int32_t level, const std::vector<PathSamples>& paths,
-  const std::vector<double>& own, float* out)
+  const std::vector<double>& own, const std::vector<std::vector<double>>& ownExtra, float* out)
 {
   const PatchMesh& pm = in.patches;
   const int64_t n = int64_t(1) << level;
@@ -243,14 +295,15 @@ void copySideSample(const SamplingInput& in, const PatchParameterization& p, con
   const float* src = &ps.values[q * in.S.size];
   std::copy(src, src + in.S.size, out);
   const int64_t q1 = int64_t(1) << ps.level;
-  if (!ch.featureSide[k] || q == 0 || q == q1)
-  {
-    return;
-  }
   const int64_t at = pm.pathOffsets[e] + ps.segment[q];
   const int32_t a = patchIndex(p, pm.pathPoints[at]);
   const int32_t b = patchIndex(p, pm.pathPoints[at + 1]);
   const double tau = ps.tau[q];
+  ownSideValues(in, ownExtra, a, b, tau, out);
+  if (!ch.featureSide[k] || q == 0 || q == q1)
+  {
+    return;
+  }
   Vec3 nn;
   for (int x = 0; x < 3; ++x)
   {
@@ -269,6 +322,7 @@ void interpolateSample(const SamplingInput& in, const PatchParameterization& p,
   const UvLocator& locator, const std::vector<double>& own, int64_t i, int64_t j, int64_t n,
   float* out)
 {
+  const std::vector<int32_t>& meshTriangles = in.patches.mesh.triangles;
   const UvLocator::Hit hit = locator.locate(static_cast<double>(i) / n, static_cast<double>(j) / n);
   const int32_t* tri = &p.triangles[3 * static_cast<int64_t>(hit.triangle)];
   Vec3 pos = Vec3::Zero(), nn = Vec3::Zero();
@@ -283,15 +337,26 @@ void interpolateSample(const SamplingInput& in, const PatchParameterization& p,
     out[x] = static_cast<float>(pos[x]);
     out[3 + x] = static_cast<float>(nn[x]);
   }
+  // Where an attribute has corner values, the slot of each corner among its mesh triangle's.
+  const int64_t t = p.meshTriangles[static_cast<size_t>(hit.triangle)];
+  int64_t slot[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    const int32_t v = p.points[tri[r]];
+    slot[r] = 3 * t + (meshTriangles[3 * t] == v ? 0 : (meshTriangles[3 * t + 1] == v ? 1 : 2));
+  }
   for (size_t at = 0; at < in.extra.size(); ++at)
   {
-    const int32_t nComp = in.extra[at].components;
+    const GeometryImageAttribute& attribute = in.extra[at];
+    const int32_t nComp = attribute.components;
     for (int32_t x = 0; x < nComp; ++x)
     {
       double v = 0.0;
       for (int r = 0; r < 3; ++r)
       {
-        v += hit.w[r] * in.extra[at].values[int64_t(p.points[tri[r]]) * nComp + x];
+        v += hit.w[r] *
+          (attribute.cornerValues.empty() ? attribute.values[int64_t(p.points[tri[r]]) * nComp + x]
+                                          : attribute.cornerValues[slot[r] * nComp + x]);
       }
       out[in.S.offset[at + 2] + x] = static_cast<float>(v);
     }
@@ -339,6 +404,7 @@ ChartGrid sampleChartGrid(const SamplingInput& in, const PatchParameterization& 
   const AtlasChart& chart, int32_t c, int32_t level, const std::vector<PathSamples>& paths)
 {
   const std::vector<double> own = chartNormals(in, p, chart, c);
+  const std::vector<std::vector<double>> ownExtra = chartCornerValues(in, p);
   ChartGrid g;
   g.level = level;
   g.n = int64_t(1) << level;
@@ -355,7 +421,7 @@ ChartGrid sampleChartGrid(const SamplingInput& in, const PatchParameterization& 
         gridSide(static_cast<int32_t>(i), static_cast<int32_t>(j), static_cast<int32_t>(n));
       if (side[0] >= 0)
       {
-        copySideSample(in, p, chart, c, side[0], side[1], level, paths, own, out);
+        copySideSample(in, p, chart, c, side[0], side[1], level, paths, own, ownExtra, out);
       }
       else
       {

@@ -18,6 +18,11 @@ constexpr const char* kComponentId = "ComponentId";       ///< cell: connected c
 constexpr const char* kInputPointId = "InputPointId";     ///< point: id in the stage's input mesh
 constexpr const char* kInputCellId = "InputCellId";       ///< cell: id of the polygon it came from
 constexpr const char* kPreparationReport = "PreparationReport"; ///< field: human-readable report
+/// Cell array name suffix: "<array>Corners" holds a point array's values at the three corners
+/// of each triangle (3 x its components), for arrays the merge of seam copies made discontinuous
+/// (tc/prep/corner_attributes.h).
+constexpr const char* kCornerValuesSuffix = "Corners";
+constexpr const char* kSeamSides = "SeamSides"; ///< cell: bit k set if side k is on a seam
 
 // tcCurvature
 constexpr const char* kPrincipalCurvatures = "PrincipalCurvatures"; ///< point: k1 >= k2
@@ -95,4 +100,14 @@ constexpr const char* kReferenceDiagonal =
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
 constexpr const char* kSceneMeshId = "SceneMeshId";   ///< cell: mesh of a scene file (glTF, FBX...)
+/// point: float (u, v), the active TCoords; v = 0 at the image's bottom row (OpenGL / VTK)
+constexpr const char* kTextureCoordinates = "TextureCoordinates";
+/// point: unsigned char RGBA (alpha 255 when the file gives RGB only)
+constexpr const char* kColors = "Colors";
+/// field: unsigned char RGBA, width x height tuples, row 0 = the image's bottom (VTK order)
+constexpr const char* kBaseColorTexture = "BaseColorTexture";
+/// field: int, one tuple (width, height) of BaseColorTexture
+constexpr const char* kBaseColorTextureSize = "BaseColorTextureSize";
+/// field: string, the texture's file name, or "embedded:<k>" for the file's k-th image
+constexpr const char* kBaseColorTextureName = "BaseColorTextureName";
 } // namespace tc

@@ -95,6 +95,11 @@ struct FeatureRefinementOptions
   /// A crease chain is kept when it has at least this many edges: a lone sharp edge is more
   /// often a badly shaped triangle than a crease.
   int creaseLineEdges = 2;
+  /// Seam sides of the input (#F bit masks from tc::seamSides, empty: none): the texture seams,
+  /// joined to the feature lines whatever their curvature (step 4c), so that no chart straddles
+  /// a seam and its grid interpolates texture coordinates only where they are continuous. Input
+  /// data rather than a setting; it lives here so that the entry point keeps its signature.
+  std::vector<uint8_t> seamSides;
 };
 
 struct FeatureRefinementResult
@@ -140,6 +145,8 @@ struct FeatureRefinementResult
 ///    curvatureThreshold = max(curvatureThresholdScale x mean of the top curvatureTopFraction
 ///    of |H| over the vertices that triangles use, minCurvatureTimesSize / bbox diagonal).
 /// 4b. Crease chains (creaseLineAngle, creaseLineEdges) are appended to the lines.
+/// 4c. Seam chains (options.seamSides: every seam edge no line holds, chained like the crease
+///    chains, of any length) are appended to the lines.
 /// 4. Corners: vertices whose |H| is the largest within cornerRings rings (ties go to the
 ///    smaller id), the top ceil(cornerFraction x count) of them by |H| that reach
 ///    curvatureThreshold; with junctionCorners also every vertex where 3 or more feature-line

@@ -141,6 +141,10 @@ struct GeometryImageAttribute
   std::string name;           ///< not empty, not "Position" or "Normal", unique
   int32_t components = 1;     ///< 1 .. 64
   std::vector<double> values; ///< #V' x components over the points of PatchMesh::mesh
+  /// #F' x 3 x components over the triangles of PatchMesh::mesh (tc::pieceCornerValues), or
+  /// empty: where given, a sample takes the values of the triangles of its own chart, so that
+  /// the two charts of a side along a texture seam each keep their own texture coordinates.
+  std::vector<double> cornerValues;
 };
 
 /// The parameterization of one patch onto the right triangle.

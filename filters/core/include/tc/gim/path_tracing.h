@@ -62,4 +62,16 @@ struct PatchMesh
 ///         along the paths (the message names the base edge or triangle and what to change)
 PatchMesh tracePaths(
   const TriMesh& mesh, const BaseComplexResult& base, const Progress& progress = {});
+
+/// Values given per triangle corner of the traced mesh (texture coordinates across a seam,
+/// tc/prep/corner_attributes.h) at the corners of its pieces: each corner of a piece is a
+/// corner of its input triangle or a Steiner point on one of its sides, so the value is that
+/// corner's, or interpolated along that side, from the input triangle's own corners.
+/// @param[in] patches     tracePaths' result for `mesh`
+/// @param[in] mesh        the mesh given to tracePaths
+/// @param[in] values      #F x 3 x components over mesh's triangles
+/// @return #F' x 3 x components over patches.mesh's triangles
+/// @throws InputError when the sizes do not match
+std::vector<double> pieceCornerValues(const PatchMesh& patches, const TriMesh& mesh,
+  const std::vector<double>& values, int32_t components);
 } // namespace tc
