@@ -279,7 +279,8 @@ def refine_features(clusters, progress=None, **options):
     straighten_lines (straighten one-face zig-zags of the boundaries, default True),
     crease_angle (degrees; straightening never trades a crease edge for a smoother one),
     crease_line_angle (degrees; chains of edges this sharp join the feature lines; 0, the
-    default: only the cluster boundaries).
+    default: only the cluster boundaries), seam_lines (texture seams the preparation marked
+    join the feature lines, default True).
     """
     f = _run_on(TriChartFeatures.tcFeatureRefinement(), clusters, "features", progress, options)
     return _output(f, 0), _output(f, 1), _output(f, 2)
