@@ -2,6 +2,7 @@
 #include "tcMeshReader.h"
 
 #include "tcMeshConversion.h"
+#include "tcTextureDecoding.h"
 
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
@@ -14,6 +15,7 @@
 #include <vtkCommand.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkGenericDataObjectReader.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -22,6 +24,7 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtksys/SystemTools.hxx>
 
@@ -32,6 +35,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <vector>
 
 vtkStandardNewMacro(tcMeshReader);
 
@@ -99,15 +103,99 @@ public:
   std::string Text;
 };
 
-/// What one reader gave: the mesh (null when nothing was read), its error text, and for a
-/// scene file the facts the report adds. `aborted`: the user stopped the read.
+/// What one reader gave: the mesh (null when nothing was read), its error text, for a scene
+/// file the facts the report adds, and the lines on what else was read (texture coordinates,
+/// colours, the texture) and on what was left out (warnings). `aborted`: the user stopped the
+/// read.
 struct ReadResult
 {
   vtkSmartPointer<vtkPolyData> mesh;
   std::string error;
   std::string sceneReport;
+  std::vector<std::string> notes;
   bool aborted = false;
 };
+
+/// Adds the point arrays TextureCoordinates (the active TCoords) and Colors of `attributes` to
+/// `mesh`, each when the file gave it; returns the report's lines on them.
+std::vector<std::string> AddPointAttributes(
+  vtkPolyData* mesh, const tc::PointAttributes& attributes)
+{
+  std::vector<std::string> notes;
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  if (!attributes.textureCoordinates.empty() &&
+    attributes.textureCoordinates.size() == static_cast<size_t>(2 * n))
+  {
+    vtkNew<vtkFloatArray> uv;
+    uv->SetName(tc::kTextureCoordinates);
+    uv->SetNumberOfComponents(2);
+    uv->SetNumberOfTuples(n);
+    std::copy(attributes.textureCoordinates.begin(), attributes.textureCoordinates.end(),
+      uv->GetPointer(0));
+    mesh->GetPointData()->SetTCoords(uv);
+    notes.push_back(std::string("texture coordinates (point array ") + tc::kTextureCoordinates +
+      ", v = 0 at the image's bottom)");
+  }
+  if (!attributes.colors.empty() && attributes.colors.size() == static_cast<size_t>(4 * n))
+  {
+    vtkNew<vtkUnsignedCharArray> rgba;
+    rgba->SetName(tc::kColors);
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(n);
+    std::copy(attributes.colors.begin(), attributes.colors.end(), rgba->GetPointer(0));
+    mesh->GetPointData()->AddArray(rgba);
+    notes.push_back(std::string("vertex colours (point array ") + tc::kColors + ", RGBA)");
+  }
+  return notes;
+}
+
+/// Decodes the file's base-colour texture into the field arrays BaseColorTexture,
+/// BaseColorTextureSize and BaseColorTextureName of `mesh`; returns the report's lines on it. A
+/// texture that cannot be decoded is a warning: the mesh is read without it.
+std::vector<std::string> AddTexture(vtkPolyData* mesh, const tc::BaseColorTexture& texture)
+{
+  std::vector<std::string> notes;
+  if (texture.hasImage())
+  {
+    const tcvtk::DecodedTexture decoded = tcvtk::DecodeTexture(texture);
+    if (decoded.rgba)
+    {
+      tcvtk::AddTextureFields(mesh->GetFieldData(), decoded, texture.name);
+      notes.push_back("texture " + texture.name + " " + std::to_string(decoded.width) + "x" +
+        std::to_string(decoded.height) + " (field array " + tc::kBaseColorTexture + ")");
+      if (!decoded.warning.empty())
+      {
+        notes.push_back("warning: texture '" + texture.name + "' is damaged: " + decoded.warning +
+          "; it was decoded as far as it goes");
+      }
+    }
+    else
+    {
+      notes.push_back("warning: texture '" + texture.name +
+        "' cannot be decoded: " + decoded.error + "; the mesh is read without a texture");
+    }
+  }
+  if (texture.leftOut > 0)
+  {
+    notes.push_back(Count(texture.leftOut, "other texture", "other textures") +
+      " left out (only the first material's texture is kept)");
+  }
+  return notes;
+}
+
+/// Adds the point arrays and the texture a core reader gave to `read.mesh`, and the report's
+/// lines on them and on the reader's warnings to `read.notes`.
+void AddMeshFileData(ReadResult& read, const tc::PointAttributes& attributes,
+  const tc::BaseColorTexture& texture, const std::vector<std::string>& warnings)
+{
+  read.notes = AddPointAttributes(read.mesh, attributes);
+  const std::vector<std::string> textureNotes = AddTexture(read.mesh, texture);
+  read.notes.insert(read.notes.end(), textureNotes.begin(), textureNotes.end());
+  for (const std::string& warning : warnings)
+  {
+    read.notes.push_back("warning: " + warning);
+  }
+}
 
 /// The report lines of a scene file: its meshes, skins, animations and skipped primitives.
 std::string SceneReport(const tc::Scene& scene)
@@ -145,6 +233,7 @@ ReadResult ReadScene(const std::string& fileName, const tc::Progress& progress)
     tcvtk::FromPolygonSoup(scene.soup, read.mesh);
     read.mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene.meshId));
     read.sceneReport = SceneReport(scene);
+    AddMeshFileData(read, scene.attributes, scene.texture, scene.warnings);
   }
   catch (const tc::Aborted&)
   {
@@ -163,18 +252,20 @@ bool IsCoreFormat(const std::string& format)
   return format == "off" || format == "ply" || format == "ply.gz" || format == "obj";
 }
 
-/// An OFF, PLY or OBJ file through the core's readers: for PLY and OBJ tc::readPLY and
-/// tc::readOBJ, not vtkPLYReader and vtkOBJReader, which crash on truncated or damaged files.
+/// An OFF, PLY or OBJ file through the core's readers: for PLY and OBJ tc::readPLYFile and
+/// tc::readOBJFile (with texture coordinates, colours and the texture), not vtkPLYReader and
+/// vtkOBJReader, which crash on truncated or damaged files.
 ReadResult ReadWithCore(const std::string& fileName, const std::string& format)
 {
   ReadResult read;
   try
   {
-    const tc::PolygonSoup soup = format == "off" ? tc::readOFF(fileName)
-      : format == "obj"                          ? tc::readOBJ(fileName)
-                                                 : tc::readPLY(fileName);
+    const tc::MeshFile file = format == "off" ? tc::MeshFile{ tc::readOFF(fileName), {}, {}, {} }
+      : format == "obj"                       ? tc::readOBJFile(fileName)
+                                              : tc::readPLYFile(fileName);
     read.mesh = vtkSmartPointer<vtkPolyData>::New();
-    tcvtk::FromPolygonSoup(soup, read.mesh);
+    tcvtk::FromPolygonSoup(file.soup, read.mesh);
+    AddMeshFileData(read, file.attributes, file.texture, file.warnings);
   }
   catch (const std::exception& e)
   {
@@ -253,10 +344,11 @@ ReadResult ReadWithVTK(const std::string& fileName, const std::string& format)
   return read;
 }
 
-/// The reader's report: what was read from where, the cell counts, the scene facts, and the
-/// point and cell arrays, one item per line.
+/// The reader's report: what was read from where, the cell counts, the scene facts, the notes
+/// (texture coordinates, colours, texture, warnings), and the point and cell arrays, one item per
+/// line.
 std::string ReadReport(const std::string& fileName, const std::string& format, vtkPolyData* output,
-  const std::string& sceneReport)
+  const std::string& sceneReport, const std::vector<std::string>& notes)
 {
   std::ostringstream report;
   report << "read " << format << " file '" << fileName << "'\n"
@@ -271,6 +363,10 @@ std::string ReadReport(const std::string& fileName, const std::string& format, v
            << " vertices/lines (not surface cells)";
   }
   report << "\n" << sceneReport;
+  for (const std::string& note : notes)
+  {
+    report << note << "\n";
+  }
   for (int i = 0; i < output->GetPointData()->GetNumberOfArrays(); ++i)
   {
     const char* name = output->GetPointData()->GetArrayName(i);
@@ -363,7 +459,7 @@ int tcMeshReader::RequestData(
 
   // 5. Output and report.
   output->ShallowCopy(read.mesh);
-  this->Report = ReadReport(this->FileName, format, output, read.sceneReport);
+  this->Report = ReadReport(this->FileName, format, output, read.sceneReport, read.notes);
   tcvtk::SetTextField(output->GetFieldData(), tc::kReaderReport, this->Report);
   return 1;
 }

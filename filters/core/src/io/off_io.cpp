@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/off_io.h"
 
+#include "detail/number_parsing.h"
 #include "tc/common/errors.h"
 
 #include <atomic>
@@ -23,51 +24,8 @@ bool isBlank(char c)
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-/// How from_chars read a whole token.
-enum class Parsed
-{
-  Ok,
-  OutOfRange, ///< every character read, but the value is beyond the type's range
-  Bad,
-};
-
-/// std::from_chars over the whole token, after an optional leading '+' (which from_chars does
-/// not take).
-template <typename T>
-Parsed parseWhole(std::string_view token, T& value)
-{
-  const char* begin = token.data();
-  const char* end = begin + token.size();
-  if (begin != end && *begin == '+')
-  {
-    ++begin;
-  }
-  const auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ptr != end || begin == end)
-  {
-    return Parsed::Bad;
-  }
-  return ec == std::errc()
-    ? Parsed::Ok
-    : (ec == std::errc::result_out_of_range ? Parsed::OutOfRange : Parsed::Bad);
-}
-
-/// Whole-token number parsing at from_chars speed. Values beyond the double range become +-Inf
-/// or 0 as strtod makes them.
-bool parseDouble(std::string_view token, double& value)
-{
-  const Parsed parsed = parseWhole(token, value);
-  if (parsed == Parsed::OutOfRange)
-  {
-    value = std::strtod(std::string(token).c_str(), nullptr);
-  }
-  return parsed != Parsed::Bad;
-}
-
-bool parseInteger(std::string_view token, int64_t& value)
-{
-  return parseWhole(token, value) == Parsed::Ok;
-}
+using detail::parseDouble;
+using detail::parseInteger;
 
 /// Line-by-line view of an OFF file held in memory. Comments ('#' to the end of the line) and
 /// blank lines are skipped; the line number of the current line goes into every error.

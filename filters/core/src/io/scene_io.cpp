@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/scene_io.h"
 
+#include "io/scene_textures.h"
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"
 
@@ -11,6 +12,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -58,9 +60,67 @@ private:
   bool& Aborted_;
 };
 
+/// Points whose mesh has no texture coordinates, and no colours: a per-point attribute is kept
+/// only when every placed mesh has it.
+struct AttributeGaps
+{
+  int64_t withoutUV = 0;
+  int64_t withoutColor = 0;
+};
+
+uint8_t colorByte(float value)
+{
+  return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+}
+
+/// Appends the texture coordinates (set 0; v as Assimp gives it, origin at the image's bottom)
+/// and colours (set 0) of `mesh`'s points, (0, 0) and white where the mesh has none.
+void addPointAttributes(const aiMesh& mesh, Scene& out, AttributeGaps& gaps)
+{
+  std::vector<float>& uv = out.attributes.textureCoordinates;
+  std::vector<uint8_t>& rgba = out.attributes.colors;
+  const aiVector3D* coordinates = mesh.mTextureCoords[0];
+  const aiColor4D* colors = mesh.mColors[0];
+  gaps.withoutUV += coordinates ? 0 : mesh.mNumVertices;
+  gaps.withoutColor += colors ? 0 : mesh.mNumVertices;
+  // Assimp 5.2's glTF importer copies RGB colours (COLOR_0 of type VEC3) into RGBA and leaves
+  // alpha 0; a mesh whose every colour has alpha 0 is taken as RGB, hence opaque.
+  const bool rgbOnly = colors &&
+    std::all_of(colors, colors + mesh.mNumVertices, [](const aiColor4D& c) { return c.a == 0; });
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+  {
+    uv.push_back(coordinates ? coordinates[v].x : 0.0f);
+    uv.push_back(coordinates && mesh.mNumUVComponents[0] > 1 ? coordinates[v].y : 0.0f);
+    const aiColor4D c = colors ? colors[v] : aiColor4D(1, 1, 1, 1);
+    rgba.insert(rgba.end(),
+      { colorByte(c.r), colorByte(c.g), colorByte(c.b), rgbOnly ? uint8_t(255) : colorByte(c.a) });
+  }
+}
+
+/// Drops the attributes some placed meshes lack, with a warning; those none has, silently.
+void keepCompleteAttributes(Scene& out, const AttributeGaps& gaps)
+{
+  const int64_t points = out.soup.numPoints();
+  const auto keep = [&](auto& values, int64_t missing, const char* what)
+  {
+    if (missing > 0 && missing < points)
+    {
+      out.warnings.push_back(std::to_string(missing) + " of " + std::to_string(points) +
+        " points have no " + what + " (their meshes lack them): the scene is read without " + what);
+    }
+    if (missing > 0)
+    {
+      values.clear();
+    }
+  };
+  keep(out.attributes.textureCoordinates, gaps.withoutUV, "texture coordinates");
+  keep(out.attributes.colors, gaps.withoutColor, "colours");
+}
+
 /// Appends the meshes of `node` and of its children, each placed with the transform
 /// accumulated from the root.
-void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Scene& out)
+void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Scene& out,
+  AttributeGaps& gaps)
 {
   const aiMatrix4x4 transform = parent * node.mTransformation;
   // A mirroring transform reverses the winding; put it back so faces keep their side.
@@ -79,6 +139,7 @@ void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
       const aiVector3D p = transform * mesh.mVertices[v];
       out.soup.points.insert(out.soup.points.end(), { p.x, p.y, p.z });
     }
+    addPointAttributes(mesh, out, gaps);
     std::vector<int64_t> ids;
     for (unsigned f = 0; f < mesh.mNumFaces; ++f)
     {
@@ -110,7 +171,7 @@ void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c)
   {
-    addNode(scene, *node.mChildren[c], transform, out);
+    addNode(scene, *node.mChildren[c], transform, out, gaps);
   }
 }
 
@@ -299,12 +360,15 @@ Scene readScene(const std::string& path, const Progress& progress)
   }
   out.bones = static_cast<int64_t>(bones.size());
   out.animations = scene->mNumAnimations;
-  addNode(*scene, *scene->mRootNode, aiMatrix4x4(), out);
+  AttributeGaps gaps;
+  addNode(*scene, *scene->mRootNode, aiMatrix4x4(), out, gaps);
   if (out.soup.numPolygons() == 0)
   {
     throw InputError("'" + path + "' has no polygons (" + std::to_string(scene->mNumMeshes) +
       " meshes, " + std::to_string(out.skippedPrimitives) + " points and lines)");
   }
+  keepCompleteAttributes(out, gaps);
+  out.texture = sceneBaseColorTexture(*scene, path, out.warnings);
   return out;
 }
 } // namespace tc

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/soup_io.h"
 
+#include "io/ply_layout.h"
 #include "tc/common/errors.h"
 
-#include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/Simple_cartesian.h>
 
@@ -62,40 +62,6 @@ PolygonSoup toSoup(const std::string& path, const std::vector<Point>& points,
     soup.addPolygon(ids.data(), static_cast<int64_t>(ids.size()));
   }
   return soup;
-}
-
-/// One element of a PLY header: its name and the type of each property ("list <type>" for a
-/// list), the first of a repeated name only, as CGAL's reader looks names up.
-struct PlyElement
-{
-  std::string name;
-  long long count = 0;
-  std::map<std::string, std::string> types;
-  /// Every property in file order: its list's size type ("" for a scalar), its value type.
-  std::vector<std::pair<std::string, std::string>> layout;
-};
-
-/// What checkHeader found: where the end_header line starts and the data after it, the format.
-struct PlyHeader
-{
-  size_t end = 0;
-  size_t body = 0;
-  std::string format;
-  std::vector<PlyElement> elements;
-};
-
-/// Bytes of a binary PLY scalar type.
-size_t plySize(const std::string& type)
-{
-  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
-  {
-    return 1;
-  }
-  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
-  {
-    return 2;
-  }
-  return type == "double" || type == "float64" ? 8 : 4;
 }
 
 /// Refuses a list whose declared length the whole file cannot hold, and an element of items
@@ -305,13 +271,17 @@ PlyHeader checkHeader(const std::string& path, const std::string& bytes)
     else if (w.empty() || w[0] == "comment" || w[0] == "obj_info")
     {
       ok = true;
+      if (w.size() > 2 && w[0] == "comment" && w[1] == "TextureFile")
+      {
+        header.textureFile = line.substr(line.find("TextureFile") + 12);
+      }
     }
     else if (w[0] == "element")
     {
       ok = w.size() == 3 && !w[2].empty() &&
         w[2].find_first_not_of("0123456789") == std::string::npos && w[2].size() < 12;
       element = element || ok;
-      elements.push_back({ ok ? w[1] : std::string(), ok ? std::stoll(w[2]) : 0, {}, {} });
+      elements.push_back({ ok ? w[1] : std::string(), ok ? std::stoll(w[2]) : 0, {}, {}, {} });
     }
     else if (w[0] == "property" && element)
     {
@@ -322,6 +292,7 @@ PlyHeader checkHeader(const std::string& path, const std::string& bytes)
         elements.back().types.emplace(w.back(), w.size() == 3 ? w[1] : "list " + w[3]);
         elements.back().layout.emplace_back(
           w.size() == 3 ? std::string() : w[2], w.size() == 3 ? w[1] : w[3]);
+        elements.back().names.push_back(w.back());
       }
     }
     if (!ok)
@@ -386,7 +357,7 @@ std::string readGzip(const std::string& path)
   return data;
 }
 
-PolygonSoup readPLY(const std::string& path)
+MeshFile readPLYFile(const std::string& path)
 {
   std::ifstream file(path, std::ios::binary);
   if (!file.good())
@@ -439,34 +410,18 @@ PolygonSoup readPLY(const std::string& path)
       " faces were read before the data stopped matching it (a truncated or damaged file, or "
       "an unsupported layout)");
   }
-  return toSoup(path, points, faces);
+  MeshFile mesh;
+  mesh.soup = toSoup(path, points, faces);
+  mesh.attributes = readPlyVertexAttributes(bytes, layout);
+  if (!layout.textureFile.empty())
+  {
+    mesh.texture = readTextureFile(path, layout.textureFile, mesh.warnings);
+  }
+  return mesh;
 }
 
-PolygonSoup readOBJ(const std::string& path)
+PolygonSoup readPLY(const std::string& path)
 {
-  std::ifstream file(path, std::ios::binary);
-  if (!file.good())
-  {
-    throw InputError("cannot open '" + path + "': the file does not exist or is not readable");
-  }
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
-  bool ok = false;
-  try
-  {
-    ok = CGAL::IO::read_OBJ(file, points, faces, CGAL::parameters::verbose(false));
-  }
-  catch (const std::exception& e)
-  {
-    throw InputError("cannot read '" + path + "' as OBJ: " + e.what());
-  }
-  if (!ok && !faces.empty())
-  {
-    throw InputError("cannot read '" + path + "' as OBJ: " + std::to_string(points.size()) +
-      " vertices and " + std::to_string(faces.size()) +
-      " faces were read before a line that is no OBJ, or a face with a vertex the file does not "
-      "have (a truncated or damaged file?)");
-  }
-  return toSoup(path, points, faces);
+  return readPLYFile(path).soup;
 }
 } // namespace tc

@@ -6,6 +6,7 @@
 
 #include "tc/common/mesh.h"
 #include "tc/common/progress.h"
+#include "tc/io/mesh_file.h"
 
 #include <string>
 #include <vector>
@@ -15,16 +16,19 @@ namespace tc
 /// The surfaces of a scene file.
 struct Scene
 {
-  PolygonSoup soup;             ///< every mesh of every node, node transforms applied
-  std::vector<int32_t> meshId;  ///< #P: index of the scene mesh each polygon came from
+  PolygonSoup soup;                   ///< every mesh of every node, node transforms applied
+  std::vector<int32_t> meshId;        ///< #P: index of the scene mesh each polygon came from
   std::vector<std::string> meshNames; ///< one per scene mesh (may be empty strings)
-  std::string importer;         ///< the Assimp importer that read the file, e.g. "glTF2 Importer"
-  int64_t meshInstances = 0;    ///< meshes placed by nodes (a mesh used by 2 nodes counts 2)
-  int64_t skinnedMeshes = 0;    ///< scene meshes with bones
-  int64_t bones = 0;            ///< distinct bone names over all meshes
-  int64_t animations = 0;       ///< animations in the file (not applied: the rest pose is read)
-  int64_t morphTargets = 0;     ///< vertex animation targets (not applied)
+  std::string importer;          ///< the Assimp importer that read the file, e.g. "glTF2 Importer"
+  int64_t meshInstances = 0;     ///< meshes placed by nodes (a mesh used by 2 nodes counts 2)
+  int64_t skinnedMeshes = 0;     ///< scene meshes with bones
+  int64_t bones = 0;             ///< distinct bone names over all meshes
+  int64_t animations = 0;        ///< animations in the file (not applied: the rest pose is read)
+  int64_t morphTargets = 0;      ///< vertex animation targets (not applied)
   int64_t skippedPrimitives = 0; ///< points and lines, which are no surface
+  PointAttributes attributes;    ///< texture coordinates (set 0) and colours (set 0) per point
+  BaseColorTexture texture;      ///< of the first material, in mesh order, that has one
+  std::vector<std::string> warnings; ///< what was left out or doubted, one sentence each
 };
 
 /// File extensions readScene handles, space-separated, without dots.
@@ -39,6 +43,14 @@ bool isSceneFile(const std::string& path);
 /// it, in the rest (bind) pose: bones, skin weights and animations are counted, not applied.
 /// Polygons keep their corner count (tc::prepareMesh triangulates); points and lines are
 /// skipped and counted.
+///
+/// Texture coordinates (the first set) and colours (the first set) are kept when every placed
+/// mesh has them, else dropped with a warning. v is as Assimp gives it, with the origin at the
+/// image's bottom for every importer: its glTF importer turns glTF's top-left v into 1 - v.
+/// The texture is the base-colour (else diffuse) texture of the first mesh's material, in the
+/// file's mesh order, that has one: an image embedded in the file ("*k", name "embedded:k"), its
+/// encoded bytes or raw texels, or a file relative to the scene's folder (a missing one is a
+/// warning); the other materials' distinct textures are counted in `texture.leftOut`.
 ///
 /// @param[in] path      the file (and, for glTF, the files it refers to beside it)
 /// @param[in] progress  reported while Assimp reads; may abort (tc::Aborted)
