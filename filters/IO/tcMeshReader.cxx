@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcMeshReader.h"
 
+#include "tcFirstMessage.h"
 #include "tcMeshConversion.h"
 #include "tcTextureDecoding.h"
 
@@ -87,21 +88,6 @@ std::string Count(int64_t n, const char* one, const char* many)
 {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
-
-/// Observes a VTK reader's error events so that their text can be reported as ours.
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* callData) override
-  {
-    if (callData && this->Text.empty())
-    {
-      this->Text = static_cast<const char*>(callData);
-    }
-  }
-  std::string Text;
-};
 
 /// What one reader gave: the mesh (null when nothing was read), its error text, for a scene
 /// file the facts the report adds, and the lines on what else was read (texture coordinates,
@@ -306,7 +292,7 @@ std::string BinarySTLError(const std::string& fileName)
 /// Legacy VTK files may hold any dataset; non-polydata is reduced to its outer surface.
 ReadResult ReadWithVTK(const std::string& fileName, const std::string& format)
 {
-  vtkNew<ErrorCatcher> catcher;
+  vtkNew<tcvtk::FirstMessage> catcher;
   vtkSmartPointer<vtkAlgorithm> reader;
   if (format == "stl")
   {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcTextureDecoding.h"
 
+#include "tcFirstMessage.h"
+
 #include "tc/common/array_names.h"
 #include "tc/io/png_check.h"
 
@@ -25,21 +27,6 @@ namespace
 {
 /// Texels a texture may have: 16384 x 16384. A damaged header's size is refused, not allocated.
 constexpr int64_t kMaxTexels = int64_t(1) << 28;
-
-/// Keeps the first message of an image reader's errors (or warnings).
-class FirstError : public vtkCommand
-{
-public:
-  static FirstError* New() { return new FirstError; }
-  void Execute(vtkObject*, unsigned long, void* callData) override
-  {
-    if (callData && this->Text.empty())
-    {
-      this->Text = static_cast<const char*>(callData);
-    }
-  }
-  std::string Text;
-};
 
 /// The reader for `bytes` by their signature, or null.
 vtkSmartPointer<vtkImageReader2> ReaderFor(const std::string& bytes)
@@ -109,7 +96,7 @@ DecodedTexture DecodeEncoded(const std::string& bytes)
     out.error = "it is a damaged PNG: " + damage;
     return out;
   }
-  vtkNew<FirstError> errors, warnings;
+  vtkNew<FirstMessage> errors, warnings;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->AddObserver(vtkCommand::WarningEvent, warnings);
   reader->SetMemoryBuffer(bytes.data());

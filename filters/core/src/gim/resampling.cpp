@@ -272,8 +272,12 @@ void ownSideValues(const SamplingInput& in, const std::vector<std::vector<double
   for (size_t at = 0; at < in.extra.size(); ++at)
   {
     const std::vector<double>& own = ownExtra[at];
+    if (own.empty())
+    {
+      continue;
+    }
     const int64_t n = in.extra[at].components;
-    for (int64_t x = 0; x < n && !own.empty(); ++x)
+    for (int64_t x = 0; x < n; ++x)
     {
       out[in.S.offset[at + 2] + x] =
         static_cast<float>((1.0 - tau) * own[a * n + x] + tau * own[b * n + x]);
@@ -295,12 +299,19 @@ void copySideSample(const SamplingInput& in, const PatchParameterization& p, con
   const float* src = &ps.values[q * in.S.size];
   std::copy(src, src + in.S.size, out);
   const int64_t q1 = int64_t(1) << ps.level;
+  const bool oneSidedNormal = ch.featureSide[k] && q != 0 && q != q1;
+  const bool ownValues = std::any_of(
+    ownExtra.begin(), ownExtra.end(), [](const std::vector<double>& v) { return !v.empty(); });
+  if (!oneSidedNormal && !ownValues)
+  {
+    return;
+  }
   const int64_t at = pm.pathOffsets[e] + ps.segment[q];
   const int32_t a = patchIndex(p, pm.pathPoints[at]);
   const int32_t b = patchIndex(p, pm.pathPoints[at + 1]);
   const double tau = ps.tau[q];
   ownSideValues(in, ownExtra, a, b, tau, out);
-  if (!ch.featureSide[k] || q == 0 || q == q1)
+  if (!oneSidedNormal)
   {
     return;
   }
@@ -338,12 +349,16 @@ void interpolateSample(const SamplingInput& in, const PatchParameterization& p,
     out[3 + x] = static_cast<float>(nn[x]);
   }
   // Where an attribute has corner values, the slot of each corner among its mesh triangle's.
-  const int64_t t = p.meshTriangles[static_cast<size_t>(hit.triangle)];
-  int64_t slot[3];
-  for (int r = 0; r < 3; ++r)
+  int64_t slot[3] = { 0, 0, 0 };
+  if (std::any_of(in.extra.begin(), in.extra.end(),
+        [](const GeometryImageAttribute& x) { return !x.cornerValues.empty(); }))
   {
-    const int32_t v = p.points[tri[r]];
-    slot[r] = 3 * t + (meshTriangles[3 * t] == v ? 0 : (meshTriangles[3 * t + 1] == v ? 1 : 2));
+    const int64_t t = p.meshTriangles[static_cast<size_t>(hit.triangle)];
+    for (int r = 0; r < 3; ++r)
+    {
+      const int32_t v = p.points[tri[r]];
+      slot[r] = 3 * t + (meshTriangles[3 * t] == v ? 0 : (meshTriangles[3 * t + 1] == v ? 1 : 2));
+    }
   }
   for (size_t at = 0; at < in.extra.size(); ++at)
   {
