@@ -18,6 +18,7 @@
 #include <QSpinBox>
 
 #include <algorithm>
+#include <array>
 
 tcParameterPanel* tcStagePanels::Preparation(tcMeshPreparation* f, QWidget* parent)
 {
@@ -96,6 +97,9 @@ tcParameterPanel* tcStagePanels::Refinement(tcFeatureRefinement* f, QWidget* par
   creaseLines->setSpecialValueText("off");
   creaseLines->setToolTip("Crease chains whose edges all bend more than this many degrees join "
                           "the feature lines where no cluster boundary follows them; 0: off");
+  panel->AddCheck("SeamLines", f->GetSeamLines(), [f](bool on) { f->SetSeamLines(on); })
+    ->setToolTip("Texture seams of the input join the feature lines, so that every chart lies on "
+                 "one side of a seam and keeps its own texture coordinates");
   return panel;
 }
 
@@ -154,6 +158,10 @@ tcParameterPanel* tcStagePanels::GeometryImages(tcGeometryImages* g, QWidget* pa
   panel->AddCheck("FitSamples", g->GetFitSamples(), [g](bool on) { g->SetFitSamples(on); })
     ->setToolTip("Fit the finest samples to the surface by least squares instead of interpolating "
                  "it");
+  panel
+    ->AddCheck("KeepAppearance", g->GetKeepAppearance(), [g](bool on) { g->SetKeepAppearance(on); })
+    ->setToolTip("Resample the input's texture coordinates and vertex colours and carry its "
+                 "base-colour texture into the atlas");
   return panel;
 }
 
@@ -187,9 +195,14 @@ tcParameterPanel* tcStagePanels::LOD(
   panel->AddCheck("Freeze LOD", false, [view](bool on) { view->SetFreezeLOD(on); })
     ->setToolTip("Keep the levels and culling of the last frame while the camera moves, to fly "
                  "around a frozen selection");
-  // In tcLODMapper::ColorModes order.
-  panel->AddChoice("Colour by", { "actor", "chart", "level" }, tcLODMapper::ColorByLevel,
-    [view](int mode) { view->SetColorMode(mode); });
+  // The tcLODMapper::ColorModes without an attribute name to give, in their order.
+  static const std::array<int, 5> modes{ tcLODMapper::ColorByActor, tcLODMapper::ColorByChart,
+    tcLODMapper::ColorByLevel, tcLODMapper::ColorByTexture, tcLODMapper::ColorByVertexColors };
+  panel
+    ->AddChoice("Colour by", { "actor", "chart", "level", "texture", "vertex colours" }, 2,
+      [view](int choice) { view->SetColorMode(modes[static_cast<size_t>(choice)]); })
+    ->setToolTip("Texture: the input's base-colour texture; vertex colours: its Colors. An atlas "
+                 "built without them is drawn in the actor's colour");
   panel->AddCheck("Wireframe", false, [view](bool on) { view->SetWireframe(on); });
   panel->AddInt("Crowd instances", 1, 2500, 1, [view](int n) { view->SetInstances(n); })
     ->setToolTip("A crowd: this many copies on a square grid of the ground, each turned by its "

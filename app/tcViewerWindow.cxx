@@ -171,7 +171,16 @@ void tcViewerWindow::BuildPanels(QWidget* panel, QVBoxLayout* layout)
       this->LODView->Render();
     },
     this));
-  layout->addWidget(this->Panels);
+  // The parameters scroll rather than grow the window past its size (screenshots keep one
+  // size whatever the tallest panel holds); ConnectPipelineDock keeps the area as tall as the
+  // shown panel.
+  this->PanelScroll = new QScrollArea(panel);
+  this->PanelScroll->setFrameShape(QFrame::NoFrame);
+  this->PanelScroll->setWidgetResizable(true);
+  this->PanelScroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  this->PanelScroll->setWidget(this->Panels);
+  this->PanelScroll->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Maximum);
+  layout->addWidget(this->PanelScroll);
 }
 
 void tcViewerWindow::BuildDisplayOptions(QWidget* panel, QVBoxLayout* layout)
@@ -224,6 +233,12 @@ void tcViewerWindow::ConnectPipelineDock(QPushButton* apply)
         this->Panels->widget(i)->setSizePolicy(policy, policy);
       }
       this->Panels->adjustSize();
+      // Short panels whole; a tall one to 14 lines of text, the rest scrolled, so that the
+      // summary below keeps its lines and the window its size.
+      const int height = this->Panels->currentWidget()->sizeHint().height();
+      this->PanelScroll->setMaximumHeight(height);
+      this->PanelScroll->setMinimumHeight(
+        std::min(height, 14 * this->PanelScroll->fontMetrics().lineSpacing()));
     });
   emit this->Panels->currentChanged(this->Panels->currentIndex());
   connect(this->Stages, &QListWidget::currentRowChanged, this,

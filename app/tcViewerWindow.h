@@ -33,6 +33,7 @@ class QListWidget;
 class QMenu;
 class QProgressBar;
 class QPushButton;
+class QScrollArea;
 class QStackedWidget;
 class QVBoxLayout;
 class QVTKOpenGLNativeWidget;
@@ -148,6 +149,7 @@ private:
   QVTKOpenGLNativeWidget* View = nullptr;
   QListWidget* Stages = nullptr;
   QStackedWidget* Panels = nullptr;
+  QScrollArea* PanelScroll = nullptr; // around Panels
   QComboBox* ColorBy = nullptr;
   QCheckBox* ShowLines = nullptr;
   QCheckBox* ShowEdges = nullptr;

@@ -14,7 +14,8 @@
   int tcTexel = tcOrigin.x + tcSample.y * tcOrigin.y + (tcOrigin.y < 0 ? -tcSample.x : tcSample.x);
   vec4 tcSampleValue = texelFetch(tcPositions, tcTexel);
   vec4 tcP = vec4(tcSampleValue.xyz, 1.0);
-  vec3 tcN = texelFetch(tcNormals, tcTexel).xyz;
+  vec4 tcNormalValue = texelFetch(tcNormals, tcTexel);
+  vec3 tcN = tcNormalValue.xyz;
   vec4 tcRow0 = texelFetch(tcInstances, 3 * tcEntry.y);
   vec4 tcRow1 = texelFetch(tcInstances, 3 * tcEntry.y + 1);
   vec4 tcRow2 = texelFetch(tcInstances, 3 * tcEntry.y + 2);
@@ -26,6 +27,10 @@
   tcCaptureVSOutput = vec4(tcPositionMC.xyz, tcPadding ? -1.0 : float(tcEntry.x));
   tcCaptureGridVSOutput = vec4(vec2(tcGrid), float(tcLevel), float(tcEntry.y));
   float tcScaled = clamp((tcSampleValue.w - tcRange.x) / max(tcRange.y - tcRange.x, 1e-30), 0.0, 1.0);
+  // A stitched side vertex reads its own chart's texel (tcSample), so a texture seam between
+  // two charts keeps each chart's own texture coordinates.
+  tcTexCoordVSOutput = vec2(tcSampleValue.w, tcNormalValue.w);
   tcColorVSOutput = tcColorMode == 1 ? tcLabelColor(tcEntry.x)
     : tcColorMode == 2             ? tcLabelColor(tcLevel + 1)
+    : tcColorMode == 5             ? tcUnpackRgb(tcSampleValue.w)
                                    : texelFetch(tcColors, int(tcScaled * 255.0 + 0.5)).rgb;

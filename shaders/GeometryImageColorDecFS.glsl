@@ -1,5 +1,7 @@
 //VTK::Normal::Dec
 in vec3 tcColorVSOutput;
+in vec2 tcTexCoordVSOutput;
+uniform sampler2D tcTexture;         // the atlas's base-colour texture (1 white texel without)
 flat in int tcEntryVSOutput;
 uniform int tcColorMode;
 uniform isamplerBuffer tcDrawList;

@@ -1,3 +1,4 @@
 //VTK::Color::Impl
     tcColorGSOutput = tcColorVSOutput[i];
+    tcTexCoordGSOutput = tcTexCoordVSOutput[i];
     tcEntryGSOutput = tcEntryVSOutput[i];

@@ -13,11 +13,13 @@ uniform int tcDrawOffset;           // first draw-list entry of this draw call
 uniform int tcDrawEnd;              // and the end of its entries
 uniform int tcCopies;               // charts per instance: copies of the grid, k in vertexMC.z
 uniform int tcStitching;            // 0 draws every chart unstitched (to show what eq. 8 mends)
-uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level, 3 attribute
+uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level, 3 attribute,
+                                    // 4 texture, 5 vertex colours (tcLODMapper::ColorModes)
 uniform samplerBuffer tcColors;     // the lookup table, 256 colours over tcRange
 uniform vec2 tcRange;
 
 out vec3 tcColorVSOutput;
+out vec2 tcTexCoordVSOutput;  // mode 4: the sample's texture coordinates
 out vec4 tcCaptureVSOutput;   // model position and chart: read back by transform feedback
 out vec4 tcCaptureGridVSOutput; // (i, j, level, instance) of the same vertex
 flat out int tcEntryVSOutput;   // the draw-list entry (the picking pass's cell ids), -1 padding
@@ -65,4 +67,11 @@ vec3 tcLabelColor(int label)
   float h = fract(0.618033988749895 * float(label));
   vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
   return mix(vec3(1.0), k, 0.55) * 0.95;
+}
+
+// tcvtk::lod::PackTexels' r * 65536 + g * 256 + b (0 .. 255 each) as a colour.
+vec3 tcUnpackRgb(float code)
+{
+  int rgb = int(code + 0.5);
+  return vec3(float((rgb >> 16) & 255), float((rgb >> 8) & 255), float(rgb & 255)) / 255.0;
 }

@@ -16,6 +16,7 @@
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTypeInt64Array.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -153,6 +154,70 @@ vtkSmartPointer<vtkMultiBlockDataSet> ImageBlocks(const tc::Atlas& atlas)
       ->Set(vtkCompositeDataSet::NAME(), (tc::kImageBlockPrefix + std::to_string(k)).c_str());
   }
   return images;
+}
+
+/// Block 2 of an atlas with textures: one image per texture, its bytes as RGBA scalars.
+vtkSmartPointer<vtkMultiBlockDataSet> TextureBlocks(const tc::Atlas& atlas)
+{
+  auto textures = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  textures->SetNumberOfBlocks(static_cast<unsigned int>(atlas.textures.size()));
+  for (size_t t = 0; t < atlas.textures.size(); ++t)
+  {
+    const tc::AtlasTexture& source = atlas.textures[t];
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(source.width, source.height, 1);
+    vtkNew<vtkUnsignedCharArray> bytes;
+    bytes->SetName(tc::kTextureBytes);
+    bytes->SetNumberOfComponents(4);
+    bytes->SetNumberOfTuples(static_cast<vtkIdType>(source.width) * source.height);
+    std::copy(source.rgba.begin(), source.rgba.end(), bytes->GetPointer(0));
+    image->GetPointData()->SetScalars(bytes);
+    vtkNew<vtkStringArray> file;
+    file->SetName(tc::kTextureSource);
+    file->InsertNextValue(source.source);
+    image->GetFieldData()->AddArray(file);
+    textures->SetBlock(static_cast<unsigned int>(t), image);
+    textures->GetMetaData(static_cast<unsigned int>(t))
+      ->Set(vtkCompositeDataSet::NAME(), source.name.c_str());
+  }
+  return textures;
+}
+
+/// The textures of block 2, each an image with its RGBA bytes.
+bool ReadTextures(vtkMultiBlockDataSet* textures, tc::Atlas& atlas, std::string& error)
+{
+  for (unsigned int t = 0; t < textures->GetNumberOfBlocks(); ++t)
+  {
+    auto* image = vtkImageData::SafeDownCast(textures->GetBlock(t));
+    const char* name = textures->HasMetaData(t)
+      ? textures->GetMetaData(t)->Get(vtkCompositeDataSet::NAME())
+      : nullptr;
+    auto* bytes = image ? vtkUnsignedCharArray::SafeDownCast(
+                            image->GetPointData()->GetAbstractArray(tc::kTextureBytes))
+                        : nullptr;
+    int dims[3] = { 0, 0, 0 };
+    if (image)
+    {
+      image->GetDimensions(dims);
+    }
+    if (!bytes || !name || bytes->GetNumberOfComponents() != 4 || dims[2] != 1 ||
+      bytes->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+    {
+      error = "texture block " + std::to_string(t) +
+        " is not a named image with an unsigned char RGBA array of its size";
+      return false;
+    }
+    tc::AtlasTexture out;
+    out.name = name;
+    auto* file =
+      vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(tc::kTextureSource));
+    out.source = file && file->GetNumberOfValues() > 0 ? file->GetValue(0) : std::string();
+    out.width = dims[0];
+    out.height = dims[1];
+    out.rgba.assign(bytes->GetPointer(0), bytes->GetPointer(0) + bytes->GetNumberOfValues());
+    atlas.textures.push_back(std::move(out));
+  }
+  return true;
 }
 
 /// The field data of the atlas: where it came from.
@@ -324,6 +389,11 @@ void FromAtlas(const tc::Atlas& atlas, vtkMultiBlockDataSet* output)
   output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), tc::kChartsBlock);
   output->SetBlock(1, ImageBlocks(atlas));
   output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), tc::kImagesBlock);
+  if (!atlas.textures.empty())
+  {
+    output->SetBlock(2, TextureBlocks(atlas));
+    output->GetMetaData(2u)->Set(vtkCompositeDataSet::NAME(), tc::kTexturesBlock);
+  }
   AddProvenance(atlas, output->GetFieldData());
 }
 
@@ -331,13 +401,15 @@ bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
 {
   atlas = tc::Atlas();
   auto* top = vtkMultiBlockDataSet::SafeDownCast(input);
-  vtkTable* table =
-    top && top->GetNumberOfBlocks() == 2 ? vtkTable::SafeDownCast(top->GetBlock(0)) : nullptr;
+  const unsigned int blocks = top ? top->GetNumberOfBlocks() : 0;
+  vtkTable* table = blocks == 2 || blocks == 3 ? vtkTable::SafeDownCast(top->GetBlock(0)) : nullptr;
   auto* images = table ? vtkMultiBlockDataSet::SafeDownCast(top->GetBlock(1)) : nullptr;
-  if (!images)
+  auto* textures =
+    images && blocks == 3 ? vtkMultiBlockDataSet::SafeDownCast(top->GetBlock(2)) : nullptr;
+  if (!images || (blocks == 3 && !textures))
   {
-    error = "the input is not an atlas (a multiblock of a chart table and images, as made by "
-            "tcGeometryImages or tcAtlasReader)";
+    error = "the input is not an atlas (a multiblock of a chart table, images and maybe "
+            "textures, as made by tcGeometryImages or tcAtlasReader)";
     return false;
   }
   ChartColumns columns;
@@ -353,7 +425,7 @@ bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
       return false;
     }
   }
-  if (!ReadImages(images, atlas, error))
+  if (!ReadImages(images, atlas, error) || (textures && !ReadTextures(textures, atlas, error)))
   {
     return false;
   }

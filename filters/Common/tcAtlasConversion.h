@@ -9,6 +9,10 @@
  *   LevelError);
  * - block 1 "Images": a vtkMultiBlockDataSet with one vtkImageData per mip step (image 0 the
  *   finest), one float point array per attribute (Position, Normal, then any resampled array);
+ * - block 2 "Textures", only when the atlas has textures: a vtkMultiBlockDataSet with one
+ *   vtkImageData per texture, named as the texture (BaseColor), its bytes as the unsigned char
+ *   point array RGBA (the active scalars, row 0 the bottom) and its file as the field
+ *   TextureSource;
  * - field data of the top block: AtlasSource, InputPoints, InputTriangles, InputDiagonal.
  * The conversion copies floats and doubles bit for bit, so an atlas read from a file, shown in
  * ParaView and written again is unchanged.

@@ -15,6 +15,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 
@@ -51,6 +52,52 @@ void tcGeometryImages::ClearResampledArrays()
 
 namespace
 {
+/// The arrays to resample: the user's, then those of the input's look when kept.
+std::vector<std::string> ArraysToResample(
+  vtkPolyData* input, std::vector<std::string> names, bool appearance)
+{
+  for (const char* look : { tc::kTextureCoordinates, tc::kColors })
+  {
+    if (appearance && input->GetPointData()->GetArray(look) &&
+      std::find(names.begin(), names.end(), look) == names.end())
+    {
+      names.emplace_back(look);
+    }
+  }
+  return names;
+}
+
+/// The input's base-colour texture (the reader's field arrays) as the atlas's, when the atlas
+/// has texture coordinates to look it up; false, saying what is inconsistent, in `error`.
+bool ReadBaseColorTexture(vtkPolyData* input, tc::Atlas& atlas, std::string& error)
+{
+  vtkFieldData* fd = input->GetFieldData();
+  auto* bytes = vtkUnsignedCharArray::SafeDownCast(fd->GetAbstractArray(tc::kBaseColorTexture));
+  vtkDataArray* size = fd->GetArray(tc::kBaseColorTextureSize);
+  if (!bytes || tc::findAttribute(atlas, tc::kAtlasTextureCoordinates) < 0)
+  {
+    return true;
+  }
+  if (!size || size->GetNumberOfTuples() != 1 || size->GetNumberOfComponents() != 2 ||
+    bytes->GetNumberOfComponents() != 4 ||
+    bytes->GetNumberOfTuples() !=
+      static_cast<vtkIdType>(size->GetComponent(0, 0)) *
+        static_cast<vtkIdType>(size->GetComponent(0, 1)))
+  {
+    error = std::string("the field ") + tc::kBaseColorTexture + " is not " +
+      tc::kBaseColorTextureSize + " RGBA bytes (read the mesh again with tcMeshReader)";
+    return false;
+  }
+  tc::AtlasTexture texture;
+  texture.name = tc::kAtlasBaseColorTexture;
+  texture.source = tcvtk::GetTextField(fd, tc::kBaseColorTextureName);
+  texture.width = static_cast<int32_t>(size->GetComponent(0, 0));
+  texture.height = static_cast<int32_t>(size->GetComponent(0, 1));
+  texture.rgba.assign(bytes->GetPointer(0), bytes->GetPointer(0) + bytes->GetNumberOfValues());
+  atlas.textures.push_back(std::move(texture));
+  return true;
+}
+
 /// The point arrays to resample, each with its components; false, saying which is missing or
 /// of the wrong size in `error`.
 bool ReadResampledArrays(vtkPolyData* input, const std::vector<std::string>& names,
@@ -124,7 +171,8 @@ int tcGeometryImages::RequestData(
     return 0;
   }
   std::vector<tc::GeometryImageAttribute> extra;
-  if (!ReadResampledArrays(input, this->ResampledArrays, extra, error))
+  if (!ReadResampledArrays(
+        input, ArraysToResample(input, this->ResampledArrays, this->KeepAppearance), extra, error))
   {
     vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;
@@ -153,7 +201,12 @@ int tcGeometryImages::RequestData(
     return 0;
   }
 
-  // 5. The atlas as a multiblock.
+  // 5. The input's texture, and the atlas as a multiblock.
+  if (this->KeepAppearance && !ReadBaseColorTexture(input, atlas, error))
+  {
+    vtkErrorMacro("Cannot build geometry images: " << error << ".");
+    return 0;
+  }
   const std::string report = tcvtk::GetTextField(input->GetFieldData(), tc::kReaderReport);
   atlas.source = report.substr(0, report.find('\n'));
   tcvtk::FromAtlas(atlas, output);
@@ -171,6 +224,7 @@ void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LevelRule: " << (this->LevelRule == LEVEL_RULE_AREA ? "Area" : "Error") << "\n";
   os << indent << "StretchIterations: " << this->StretchIterations << "\n";
   os << indent << "FitSamples: " << this->FitSamples << "\n";
+  os << indent << "KeepAppearance: " << this->KeepAppearance << "\n";
   os << indent << "ResampledArrays:";
   for (const std::string& name : this->ResampledArrays)
   {

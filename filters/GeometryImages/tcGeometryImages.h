@@ -111,6 +111,16 @@ public:
   void ClearResampledArrays();
   ///@}
 
+  ///@{
+  /// Keep the input's look (default on): resample its TextureCoordinates and Colors point
+  /// arrays when it has them (as tcMeshReader names them, each chart from its own side of a
+  /// texture seam) and carry its base-colour texture (the field BaseColorTexture) into the
+  /// atlas, for tcLODMapper and the glTF export.
+  vtkSetMacro(KeepAppearance, bool);
+  vtkGetMacro(KeepAppearance, bool);
+  vtkBooleanMacro(KeepAppearance, bool);
+  ///@}
+
 protected:
   tcGeometryImages();
   ~tcGeometryImages() override;
@@ -132,6 +142,7 @@ private:
   int StretchIterations = tc::GeometryImageOptions{}.stretchIterations;
   bool FitSamples = tc::GeometryImageOptions{}.fitSamples;
   std::vector<std::string> ResampledArrays;
+  bool KeepAppearance = true;
 };
 
 #endif

@@ -53,7 +53,7 @@ void AppendGrid(int32_t n, int32_t copy, vtkIdType base, vtkPoints* points, vtkC
 }
 
 /// The value an attribute sample shows: itself, or the magnitude of a vector.
-float AttributeValue(const float* v, int comps)
+float ScalarValue(const float* v, int comps)
 {
   double value = comps == 1 ? v[0] : 0.0;
   if (comps > 1)
@@ -65,6 +65,41 @@ float AttributeValue(const float* v, int comps)
     value = std::sqrt(value);
   }
   return static_cast<float>(value);
+}
+
+/// An RGB colour of 0 .. 255 values as one float that holds the integer r * 65536 + g * 256 + b
+/// exactly (below 2^24), for the shader to take apart; missing components are 0.
+float RgbValue(const float* v, int comps)
+{
+  int32_t packed = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const float x = c < comps && std::isfinite(v[c]) ? v[c] : 0.0f;
+    packed = packed * 256 + static_cast<int32_t>(std::lround(std::clamp(x, 0.0f, 255.0f)));
+  }
+  return static_cast<float>(packed);
+}
+
+/// The fourth components of texel t from attribute values `v` (of `comps` components).
+void SetTexelColor(
+  const float* v, int comps, tcvtk::lod::TexelColor color, float& position, float& normal)
+{
+  using tcvtk::lod::TexelColor;
+  switch (color)
+  {
+    case TexelColor::Scalar:
+      position = ScalarValue(v, comps);
+      break;
+    case TexelColor::Texture:
+      position = v[0];
+      normal = comps > 1 ? v[1] : 0.0f;
+      break;
+    case TexelColor::Rgb:
+      position = RgbValue(v, comps);
+      break;
+    case TexelColor::None:
+      break;
+  }
 }
 } // namespace
 
@@ -107,19 +142,6 @@ void BuildGrids(int32_t finest, vtkPolyData* grid, std::vector<int64_t>& triangl
   grid->GetPointData()->SetNormals(normals);
 }
 
-int FindAttribute(const tc::Atlas& atlas, const std::string& name)
-{
-  int attribute = -1;
-  for (size_t a = 2; a < atlas.attributes.size(); ++a)
-  {
-    if (atlas.attributes[a].name == name)
-    {
-      attribute = static_cast<int>(a);
-    }
-  }
-  return attribute;
-}
-
 std::string OtherAttributes(const tc::Atlas& atlas)
 {
   std::string names;
@@ -132,7 +154,7 @@ std::string OtherAttributes(const tc::Atlas& atlas)
     : "it has " + names;
 }
 
-AtlasTexels PackTexels(const tc::Atlas& atlas, int attribute)
+AtlasTexels PackTexels(const tc::Atlas& atlas, int attribute, TexelColor color)
 {
   AtlasTexels texels;
   int64_t count = 0;
@@ -161,7 +183,8 @@ AtlasTexels PackTexels(const tc::Atlas& atlas, int attribute)
       {
         const int comps = atlas.attributes[static_cast<size_t>(attribute)].components;
         const float* v = image.data[static_cast<size_t>(attribute)].data() + comps * t;
-        texels.position[static_cast<size_t>(4 * (base + t) + 3)] = AttributeValue(v, comps);
+        SetTexelColor(v, comps, color, texels.position[static_cast<size_t>(4 * (base + t) + 3)],
+          texels.normal[static_cast<size_t>(4 * (base + t) + 3)]);
       }
     }
   }

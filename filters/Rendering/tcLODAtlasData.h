@@ -31,10 +31,6 @@ namespace tcvtk::lod
 void BuildGrids(int32_t finest, vtkPolyData* grid, std::vector<int64_t>& triangleStart,
   std::vector<int32_t>& copies);
 
-/// The index of the resampled attribute `name` of the atlas (after Position and Normal), -1
-/// when it has none of that name.
-int FindAttribute(const tc::Atlas& atlas, const std::string& name);
-
 /// What the atlas holds besides Position and Normal, for the message about an unknown
 /// ColorAttribute: "it has MeanCurvature, ..." or "it has none besides Position and Normal".
 std::string OtherAttributes(const tc::Atlas& atlas);
@@ -43,13 +39,22 @@ std::string OtherAttributes(const tc::Atlas& atlas);
 struct AtlasTexels
 {
   std::vector<int64_t> imageBase; ///< #images: first texel of each image
-  std::vector<float> position;    ///< 4 x #texels: x, y, z, the colour attribute's value
-  std::vector<float> normal;      ///< 4 x #texels: nx, ny, nz, 0
+  std::vector<float> position;    ///< 4 x #texels: x, y, z, the colour value (TexelColor)
+  std::vector<float> normal;      ///< 4 x #texels: nx, ny, nz, v of TextureCoordinates (or 0)
 };
 
-/// The texels of the atlas; with `attribute` >= 0 (an index of atlas.attributes) its value, or
-/// the magnitude of a vector, rides in the positions' fourth component (0 otherwise).
-AtlasTexels PackTexels(const tc::Atlas& atlas, int attribute);
+/// What rides in the fourth components of PackTexels' texels, the colour of a sample.
+enum class TexelColor
+{
+  None,    ///< 0
+  Scalar,  ///< the attribute's value, or the magnitude of a vector, in the positions
+  Texture, ///< the attribute's (u, v): u in the positions, v in the normals
+  Rgb      ///< the attribute's first three values (0 .. 255) as r * 65536 + g * 256 + b
+};
+
+/// The texels of the atlas, with attribute `attribute` (an index of atlas.attributes; -1: none)
+/// in the fourth components as `color` says.
+AtlasTexels PackTexels(const tc::Atlas& atlas, int attribute, TexelColor color);
 
 /// tc::atlasTexel as one linear texel index and a signed row stride per (chart, image):
 /// `origins` gets 4 ints per (chart, level) (index, stride, 0, 0; the stride is negative for a

@@ -4,6 +4,7 @@
 #include "tcAtlasConversion.h"
 #include "tcLODAtlasData.h"
 
+#include "tc/common/array_names.h"
 #include "tc/gim/atlas.h"
 #include "tc/gim/lod_selection.h"
 
@@ -40,6 +41,7 @@
 #include <vtkScalarsToColors.h>
 #include <vtkShader.h>
 #include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
 #include <vtkTextureUnitManager.h>
 #include <vtkTransformFeedback.h>
 #include <vtkWeakPointer.h>
@@ -154,6 +156,72 @@ void Substitute(std::map<vtkShader::Type, vtkShader*>& shaders, vtkShader::Type 
 const std::array<const char*, 7> kTextureUniforms{ "tcPositions", "tcNormals", "tcOrigins",
   "tcCharts", "tcDrawList", "tcInstances", "tcColors" };
 
+/// What a colour mode reads from the atlas: the attribute (-1: none) and how it rides in the
+/// texels, or why the mode cannot be drawn (`missing`, "" when it can).
+struct ColorSource
+{
+  int attribute = -1;
+  tcvtk::lod::TexelColor color = tcvtk::lod::TexelColor::None;
+  std::string missing;
+};
+
+/// The atlas's base-colour texture, null when it has none.
+const tc::AtlasTexture* BaseColorTexture(const tc::Atlas& atlas)
+{
+  for (const tc::AtlasTexture& texture : atlas.textures)
+  {
+    if (texture.name == tc::kAtlasBaseColorTexture)
+    {
+      return &texture;
+    }
+  }
+  return nullptr;
+}
+
+/// The source of ColorMode `mode`; ColorAttribute `name` rides along in the other modes that
+/// leave the fourth components free, so that switching to ColorByAttribute uploads nothing.
+ColorSource FindColorSource(const tc::Atlas& atlas, int mode, const std::string& name)
+{
+  using tcvtk::lod::TexelColor;
+  ColorSource source;
+  if (mode == tcLODMapper::ColorByTexture)
+  {
+    source.attribute = tc::findAttribute(atlas, tc::kAtlasTextureCoordinates);
+    source.color = TexelColor::Texture;
+    if (source.attribute < 0 || !BaseColorTexture(atlas))
+    {
+      source = { -1, TexelColor::None,
+        "ColorByTexture: the atlas has no base-colour texture (build it from a textured mesh "
+        "with tcGeometryImages' KeepAppearance on)" };
+    }
+    return source;
+  }
+  if (mode == tcLODMapper::ColorByVertexColors)
+  {
+    source.attribute = tc::findAttribute(atlas, tc::kColors);
+    source.color = TexelColor::Rgb;
+    if (source.attribute < 0 ||
+      atlas.attributes[static_cast<size_t>(source.attribute)].components < 3)
+    {
+      source = { -1, TexelColor::None,
+        "ColorByVertexColors: the atlas has no Colors attribute of 3 or 4 components (build it "
+        "from a mesh with vertex colours, tcGeometryImages' KeepAppearance on)" };
+    }
+    return source;
+  }
+  const int attribute = tc::findAttribute(atlas, name);
+  if (attribute >= 2)
+  {
+    source = { attribute, TexelColor::Scalar, "" };
+  }
+  else if (!name.empty())
+  {
+    source.missing = "ColorAttribute '" + name + "' is not an attribute of the atlas (" +
+      tcvtk::lod::OtherAttributes(atlas) + ")";
+  }
+  return source;
+}
+
 /// Row-major 4 x 4 identity: the one instance drawn without SetInstanceMatrices.
 const std::vector<double> kIdentity{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
 } // namespace
@@ -232,7 +300,11 @@ struct tcLODMapper::Internals
   }
   vtkTimeStamp uploadTime;
   std::string uploadedAttribute; // the ColorAttribute asked for at the last upload
-  bool attributeFound = false;   // and whether it is in the positions' fourth component
+  int uploadedMode = -1;         // and the ColorMode
+  bool attributeFound = false;   // whether the fourth components hold what that mode shows
+  /// The base-colour texture (ColorByTexture), or one white texel: the sampler always has a
+  /// texture of its own type on a unit of its own, as OpenGL requires of every draw.
+  vtkNew<vtkTextureObject> texture;
   std::array<double, 2> attributeRange{ 0.0, 1.0 };
   vtkOpenGLRenderWindow* uploadWindow = nullptr;
 
@@ -478,19 +550,20 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
   const std::string attributeName = this->ColorAttribute ? this->ColorAttribute : "";
   if (in.uploadWindow == window && in.uploadTime > in.grid->GetMTime() &&
-    in.uploadTime > in.instanceTime && in.uploadedAttribute == attributeName)
+    in.uploadTime > in.instanceTime && in.uploadedAttribute == attributeName &&
+    in.uploadedMode == this->ColorMode)
   {
     return;
   }
   const tc::Atlas& atlas = in.atlas;
-  // The attribute to colour by rides in the fourth component of the positions.
-  const int attribute = FindAttribute(atlas, attributeName);
-  if (!attributeName.empty() && attribute < 0)
+  // What the colour mode shows rides in the fourth components of the texels.
+  const ColorSource source = FindColorSource(atlas, this->ColorMode, attributeName);
+  if (!source.missing.empty())
   {
-    vtkErrorMacro("ColorAttribute '" << attributeName << "' is not an attribute of the atlas ("
-                                     << OtherAttributes(atlas) << "); the actor's colour is used.");
+    vtkErrorMacro(<< source.missing << "; the actor's colour is used.");
   }
-  const AtlasTexels texels = PackTexels(atlas, attribute);
+  const AtlasTexels texels = PackTexels(atlas, source.attribute, source.color);
+  this->UploadTexture(window, source.color == TexelColor::Texture);
   std::vector<int32_t> origins;
   std::vector<int32_t> charts;
   PackChartTable(atlas, texels.imageBase, origins, charts);
@@ -499,12 +572,32 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   in.origins.Upload(origins, true);
   in.chartTable.Upload(charts, true);
   in.instanceRows.Upload(InstanceRows(in.instances), false);
-  in.attributeRange = attribute >= 0 ? AttributeRange(atlas, texels.position)
-                                     : std::array<double, 2>{ VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  in.attributeRange = source.color == TexelColor::Scalar
+    ? AttributeRange(atlas, texels.position)
+    : std::array<double, 2>{ VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   in.uploadedAttribute = attributeName;
-  in.attributeFound = attribute >= 0;
+  in.uploadedMode = this->ColorMode;
+  in.attributeFound = source.attribute >= 0;
   in.uploadWindow = window;
   in.uploadTime.Modified();
+}
+
+void tcLODMapper::UploadTexture(vtkOpenGLRenderWindow* window, bool baseColor)
+{
+  // Mipmapped and repeated, as glTF's default sampler and an engine draw it.
+  vtkTextureObject* texture = this->Internal->texture;
+  texture->SetContext(window);
+  texture->SetWrapS(vtkTextureObject::Repeat);
+  texture->SetWrapT(vtkTextureObject::Repeat);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SetMinificationFilter(
+    baseColor ? vtkTextureObject::LinearMipmapLinear : vtkTextureObject::Nearest);
+  texture->SetGenerateMipmap(baseColor);
+  static const uint8_t white[4] = { 255, 255, 255, 255 };
+  const tc::AtlasTexture* image = baseColor ? BaseColorTexture(this->Internal->atlas) : nullptr;
+  texture->Create2DFromRaw(image ? static_cast<unsigned int>(image->width) : 1,
+    image ? static_cast<unsigned int>(image->height) : 1, 4, VTK_UNSIGNED_CHAR,
+    const_cast<uint8_t*>(image ? image->rgba.data() : white));
 }
 
 void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
@@ -574,8 +667,9 @@ void tcLODMapper::WarnAboutSettings(vtkRenderer* ren, vtkActor* act)
   vtkProperty* property = act->GetProperty();
   if (!in.warnedTextures && (act->GetTexture() || property->GetNumberOfTextures() > 0))
   {
-    vtkWarningMacro("The actor has a texture, which tcLODMapper does not draw: an atlas has no "
-                    "texture coordinates. Colour it by ColorMode and ColorAttribute instead.");
+    vtkWarningMacro("The actor has a texture, which tcLODMapper does not draw: the grids it "
+                    "draws have no texture coordinates. Colour by the atlas's own texture "
+                    "(ColorMode ColorByTexture), or by ColorMode and ColorAttribute.");
     in.warnedTextures = true;
   }
   vtkHardwareSelector* selector = ren->GetSelector();
@@ -730,6 +824,11 @@ int tcLODGridMapper::UploadColorTable(std::array<double, 2>& range)
   // ScalarVisibility off draws the actor's colour, as it does for vtkPolyDataMapper.
   int colorMode = owner->GetScalarVisibility() ? owner->ColorMode : tcLODMapper::ColorByActor;
   range = in.attributeRange;
+  if ((colorMode == tcLODMapper::ColorByTexture || colorMode == tcLODMapper::ColorByVertexColors) &&
+    !in.attributeFound)
+  {
+    colorMode = tcLODMapper::ColorByActor;
+  }
   if (colorMode == tcLODMapper::ColorByAttribute)
   {
     if (!in.attributeFound)
@@ -831,6 +930,8 @@ void tcLODGridMapper::SetFrameUniforms(vtkShaderProgram* program, vtkRenderer* r
   {
     program->SetUniformi(kTextureUniforms[t], textures[t]->Activate(window));
   }
+  in.texture->Activate();
+  program->SetUniformi("tcTexture", in.texture->GetTextureUnit());
   program->SetUniformi("tcStitching", this->Owner->Stitching ? 1 : 0);
   program->SetUniformi("tcColorMode", colorMode);
   const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
@@ -893,6 +994,7 @@ void tcLODGridMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     texture->Deactivate(window);
   }
+  in.texture->Deactivate();
 }
 
 double* tcLODMapper::GetBounds()
@@ -943,6 +1045,7 @@ void tcLODMapper::ReleaseGraphicsResources(vtkWindow* window)
   {
     texture->Release();
   }
+  in.texture->ReleaseGraphicsResources(in.window ? in.window.Get() : window);
   in.capture->ReleaseGraphicsResources();
   in.gridMapper->ReleaseGraphicsResources(window);
   if (in.window)

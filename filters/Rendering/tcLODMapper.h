@@ -25,12 +25,13 @@
  * Gouraud or Phong interpolation, surface, wireframe, points and surface with edges, opacity
  * with or without depth peeling, backface and frontface culling, clipping planes, and the
  * user's own replacements in the actor's vtkShaderProperty (applied before the mapper's, which
- * live in its grid mapper, not in that property). Textures are not drawn (an atlas has no
- * texture coordinates; a warning says so).
+ * live in its grid mapper, not in that property). The actor's textures are not drawn (the
+ * grid has no texture coordinates of its own; a warning says so): the atlas's are.
  *
- * Colour: the actor's, or per chart, per level, or by an attribute of the atlas through the
- * lookup table (ColorMode, ColorAttribute), while ScalarVisibility is on (the default); off, the
- * actor's colour. Lighting uses the atlas's normal image.
+ * Colour: the actor's, or per chart, per level, by an attribute of the atlas through the
+ * lookup table (ColorMode, ColorAttribute), by the atlas's base-colour texture looked up with
+ * its TextureCoordinates, or by its Colors (the input's vertex colours), while ScalarVisibility
+ * is on (the default); off, the actor's colour. Lighting uses the atlas's normal image.
  *
  * Selection: with vtkHardwareSelector over cells, a picked cell id is the LOD draw list's
  * (tc::LodDrawList): LocateCell maps it to the instance, chart, level and grid triangle of the
@@ -80,7 +81,9 @@ public:
     ColorByActor = 0,
     ColorByChart = 1,
     ColorByLevel = 2,
-    ColorByAttribute = 3
+    ColorByAttribute = 3,
+    ColorByTexture = 4,
+    ColorByVertexColors = 5
   };
 
   ///@{
@@ -134,8 +137,12 @@ public:
   void SetChartLevels(vtkIntArray* levels);
 
   ///@{
-  /// ColorByActor (default), ColorByChart or ColorByLevel.
-  vtkSetClampMacro(ColorMode, int, ColorByActor, ColorByAttribute);
+  /// ColorByActor (default), ColorByChart, ColorByLevel, ColorByAttribute (ColorAttribute),
+  /// ColorByTexture (the atlas's BaseColor texture at its TextureCoordinates, linearly filtered
+  /// with mipmaps and repeated outside [0, 1], as glTF samples it) or ColorByVertexColors (its
+  /// Colors attribute, 0 .. 255). An atlas without what the mode needs is drawn in the actor's
+  /// colour, and a warning says why.
+  vtkSetClampMacro(ColorMode, int, ColorByActor, ColorByVertexColors);
   vtkGetMacro(ColorMode, int);
   ///@}
 
@@ -221,6 +228,7 @@ private:
   bool UpdateAtlas();
   void ReleaseAtlas();
   void UploadAtlas(vtkRenderer* ren);
+  void UploadTexture(vtkOpenGLRenderWindow* window, bool baseColor);
   void SelectLevels(vtkRenderer* ren, vtkActor* act);
   void WarnAboutSettings(vtkRenderer* ren, vtkActor* act);
   void UseWindow(vtkOpenGLRenderWindow* window);

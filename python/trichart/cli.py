@@ -92,12 +92,14 @@ def _build_options(args):
     return {"stages": args.stages, "image": not args.no_image,
             "cluster_options": {"number_of_clusters": args.clusters},
             "feature_options": {"crease_angle": args.crease_angle,
-                                "crease_line_angle": args.crease_lines},
+                                "crease_line_angle": args.crease_lines,
+                                "seam_lines": not args.no_seam_lines},
             "base_options": {"target_faces": args.base_faces, "max_error": args.max_error},
             "geometry_options": {"max_level": args.max_level, "sample_budget": args.budget,
                                  "error_target": args.error_target,
                                  "stretch_iterations": args.stretch_iterations,
-                                 "fit_samples": not args.no_fit},
+                                 "fit_samples": not args.no_fit,
+                                 "keep_appearance": not args.no_appearance},
             "prepare_options": _repair_options(args)}
 
 
@@ -442,6 +444,12 @@ def _add_build_parser(sub, d):
                         f"{d.images.GetStretchIterationsMinValue()} .. "
                         f"{d.images.GetStretchIterationsMaxValue()} (default "
                         f"{d.images.GetStretchIterations()}; 0: the mean-value map alone)")
+    p.add_argument("--no-seam-lines", action="store_true",
+                   help="do not make the mesh's texture seams feature lines (each chart then "
+                        "spans a seam and its texture smears across it)")
+    p.add_argument("--no-appearance", action="store_true",
+                   help="leave the mesh's texture coordinates, vertex colours and base-colour "
+                        "texture out of the atlas")
     p.add_argument("--no-fit", action="store_true",
                    help="interpolate the surface at the finest samples instead of fitting "
                         "them to it by least squares")

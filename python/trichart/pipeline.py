@@ -325,7 +325,9 @@ def geometry_images(patches, resampled_arrays=(), progress=None, **options):
     brought below; default 7e-4; 0: none, the budget alone), sample_budget, min_level, max_level,
     curvature_weight, level_rule (0: by curvature-weighted area, 1: by measured error, the
     default), stretch_iterations
-    (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone).
+    (stretch-reducing passes over each mean-value map, default 10; 0: Floater's map alone),
+    keep_appearance (default True: resample TextureCoordinates and Colors when the mesh has
+    them and carry its base-colour texture into the atlas).
     """
     f = TriChartGeometryImages.tcGeometryImages()
     for name in resampled_arrays:

@@ -116,6 +116,28 @@ def test_build_options_reach_the_stages(testing_data, tmp_path):
         assert not (tmp_path / "bad.exr").exists()
 
 
+def test_build_keeps_the_texture_unless_told_not_to(testing_data, tmp_path):
+    import trichart
+
+    sphere = testing_data / "meshes" / "textured_sphere.glb"
+    charts = {}
+    for flags in ((), ("--no-appearance",), ("--no-seam-lines",)):
+        atlas = tmp_path / ("atlas" + "".join(flags) + ".exr")
+        r = run("build", sphere, "-o", atlas, "-q", *flags)
+        assert r.returncode == 0, r.stderr
+        read = trichart.read_atlas(atlas)
+        images = read.GetBlock(1).GetBlock(0).GetPointData()
+        uv = images.GetArray("TextureCoordinates")
+        if "--no-appearance" in flags:
+            assert read.GetNumberOfBlocks() == 2 and uv is None
+        else:
+            assert read.GetNumberOfBlocks() == 3 and uv.GetNumberOfComponents() == 2
+            assert read.GetBlock(2).GetBlock(0).GetDimensions() == (64, 32, 1)
+        charts[flags] = trichart.atlas_charts(read).GetNumberOfRows()
+    # The sphere's seam (and its poles' one vertex per segment) cut charts: fewer without.
+    assert charts[("--no-seam-lines",)] < charts[()]
+
+
 def _finest_hausdorff(mesh, atlas):
     """Hausdorff / diagonal (%) of the finest row that `trichart eval` prints."""
     r = run("eval", mesh, atlas)

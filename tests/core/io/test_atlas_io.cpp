@@ -459,6 +459,15 @@ void expectBitIdentical(const tc::Atlas& expected, const tc::Atlas& actual)
     EXPECT_TRUE(sameBits(r.box, e.box)) << "chart " << c;
     EXPECT_TRUE(sameBits(r.levelError, e.levelError)) << "chart " << c;
   }
+  ASSERT_EQ(actual.textures.size(), expected.textures.size());
+  for (size_t t = 0; t < expected.textures.size(); ++t)
+  {
+    EXPECT_EQ(actual.textures[t].name, expected.textures[t].name);
+    EXPECT_EQ(actual.textures[t].source, expected.textures[t].source);
+    EXPECT_EQ(actual.textures[t].width, expected.textures[t].width);
+    EXPECT_EQ(actual.textures[t].height, expected.textures[t].height);
+    EXPECT_TRUE(actual.textures[t].rgba == expected.textures[t].rgba) << "texture " << t;
+  }
 }
 
 std::string fileBytes(const std::string& path)
@@ -719,6 +728,17 @@ void writeOldVersion(
   saveParts(to, parts);
 }
 
+/// An edit of the parts that makes `edit` on the metadata JSON (checksum kept valid).
+std::function<void(std::vector<ExrPart>&)> metadataEdit(const std::function<void(Json&)>& edit)
+{
+  return [edit](std::vector<ExrPart>& parts)
+  {
+    Json metadata = metadataOf(parts);
+    edit(metadata);
+    setMetadata(parts, metadata.dump());
+  };
+}
+
 /// Atlas files in a fresh folder per test.
 class AtlasIo : public tctest::TempFolderTest
 {
@@ -749,28 +769,30 @@ protected:
     return "";
   }
 
-  /// Writes the awkward atlas, applies `edit` to its parts and returns the refusal message.
-  std::string damagedError(const std::function<void(std::vector<ExrPart>&)>& edit)
+  /// Applies `edit` to the parts of the atlas file `good`, saves them as "bad.exr" and returns
+  /// the refusal message.
+  std::string damagedCopyError(
+    const std::string& good, const std::function<void(std::vector<ExrPart>&)>& edit)
   {
-    const std::string good = file("good.exr");
     const std::string bad = file("bad.exr");
-    tc::writeAtlas(tetrahedronAtlas(2, true), good);
     std::vector<ExrPart> parts = loadParts(good);
     edit(parts);
     saveParts(bad, parts);
     return readError(bad);
   }
 
+  /// Writes the awkward atlas, applies `edit` to its parts and returns the refusal message.
+  std::string damagedError(const std::function<void(std::vector<ExrPart>&)>& edit)
+  {
+    const std::string good = file("good.exr");
+    tc::writeAtlas(tetrahedronAtlas(2, true), good);
+    return damagedCopyError(good, edit);
+  }
+
   /// damagedError for an edit of the metadata JSON (checksum kept valid).
   std::string metadataError(const std::function<void(Json&)>& edit)
   {
-    return damagedError(
-      [&edit](std::vector<ExrPart>& parts)
-      {
-        Json metadata = metadataOf(parts);
-        edit(metadata);
-        setMetadata(parts, metadata.dump());
-      });
+    return damagedError(metadataEdit(edit));
   }
 };
 
@@ -908,7 +930,7 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
     static_cast<int>(text.size()));
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
-  EXPECT_EQ(tc::kAtlasFileVersion, 4);
+  EXPECT_EQ(tc::kAtlasFileVersion, 5);
   const Json metadata = Json::parse(text);
   for (const Json& image : metadata["images"])
   {
@@ -1931,25 +1953,12 @@ TEST_F(AtlasIo, AnyNormalOfTheLatticeIsStoredAsItsCode)
 TEST_F(AtlasIo, RefusesDamagedVersion4Files)
 {
   const std::string good = file("good4.exr");
-  const std::string bad = file("bad4.exr");
+  const std::string bad = file("bad.exr");
   tc::writeAtlas(latticeAtlas(), good);
   const auto damaged = [&](const std::function<void(std::vector<ExrPart>&)>& edit)
-  {
-    std::vector<ExrPart> parts = loadParts(good);
-    edit(parts);
-    saveParts(bad, parts);
-    return readError(bad);
-  };
+  { return damagedCopyError(good, edit); };
   const auto metadataDamaged = [&](const std::function<void(Json&)>& edit)
-  {
-    return damaged(
-      [&edit](std::vector<ExrPart>& parts)
-      {
-        Json metadata = metadataOf(parts);
-        edit(metadata);
-        setMetadata(parts, metadata.dump());
-      });
-  };
+  { return damagedCopyError(good, metadataEdit(edit)); };
   // A bad frame.
   std::string error = metadataDamaged([](Json& m) { m.erase("lattice"); });
   EXPECT_TRUE(mentions(error, "lacks the root.lattice")) << error;
@@ -1966,7 +1975,7 @@ TEST_F(AtlasIo, RefusesDamagedVersion4Files)
   error = metadataDamaged([](Json& m) { m["lattice"]["extent"][0] = 10; });
   EXPECT_TRUE(mentions(error, "outside the lattice's 0 .. 10")) << error;
   error = metadataDamaged([](Json& m) { m["images"][0]["texels"] = "all"; });
-  EXPECT_TRUE(mentions(error, "which version 4 does not write")) << error;
+  EXPECT_TRUE(mentions(error, "which a file with a lattice does not have")) << error;
 
   // Damaged parts: codes as floats, residuals that leave the lattice, a changed residual.
   error = damaged(
@@ -2067,4 +2076,170 @@ TEST_F(AtlasIo, RefusesToWriteAnAtlasUnderAnotherExtension)
   EXPECT_TRUE(std::filesystem::is_empty(Folder));
   tc::writeAtlas(tetrahedronAtlas(1, true), file("UPPER.EXR"));
   EXPECT_TRUE(std::filesystem::exists(file("UPPER.EXR")));
+}
+
+// ------------------------------------------------------------------------------------------
+// Version 5: textures
+
+namespace
+{
+/// `atlas` with a TextureCoordinates attribute (every texel's first two position values) and
+/// two textures of hashed bytes, one of 37 x 19 texels, one of a single texel.
+tc::Atlas withTextures(tc::Atlas atlas)
+{
+  atlas.attributes.push_back({ tc::kAtlasTextureCoordinates, 2 });
+  for (tc::AtlasImage& image : atlas.images)
+  {
+    std::vector<float> uv;
+    for (size_t t = 0; t < image.data[0].size(); t += 3)
+    {
+      uv.push_back(image.data[0][t]);
+      uv.push_back(image.data[0][t + 1]);
+    }
+    image.data.push_back(std::move(uv));
+  }
+  const auto texture = [](const char* name, const char* source, int32_t w, int32_t h)
+  {
+    tc::AtlasTexture out{ name, source, w, h, {} };
+    for (int64_t b = 0; b < int64_t(w) * h * 4; ++b)
+    {
+      out.rgba.push_back(static_cast<uint8_t>(hashOf({ w, h, b }) >> 17));
+    }
+    return out;
+  };
+  atlas.textures.push_back(texture(tc::kAtlasBaseColorTexture, "checker.png", 37, 19));
+  atlas.textures.push_back(texture("Extra", "embedded:1", 1, 1));
+  return atlas;
+}
+} // namespace
+
+TEST_F(AtlasIo, TexturesRoundTripBitExactWithAndWithoutALattice)
+{
+  for (const bool lattice : { true, false })
+  {
+    const tc::Atlas atlas = withTextures(lattice ? latticeAtlas() : tetrahedronAtlas(2, true));
+    ASSERT_NO_THROW(tc::validateAtlas(atlas));
+    const std::string path = file(lattice ? "lattice5.exr" : "float5.exr");
+    tc::writeAtlas(atlas, path);
+    expectBitIdentical(atlas, tc::readAtlas(path));
+    const Json metadata = metadataOf(loadParts(path));
+    EXPECT_EQ(metadata["version"], 5);
+    EXPECT_EQ(metadata.contains("lattice"), lattice);
+  }
+  // Without textures the writer still writes version 4, which older readers read.
+  tc::writeAtlas(latticeAtlas(), file("lattice4.exr"));
+  EXPECT_EQ(metadataOf(loadParts(file("lattice4.exr")))["version"], 4);
+}
+
+TEST_F(AtlasIo, Version5FollowsTheDocumentedLayout)
+{
+  const tc::Atlas atlas = withTextures(latticeAtlas());
+  const std::string path = file("textures.exr");
+  tc::writeAtlas(atlas, path);
+  std::vector<ExrPart> parts = loadParts(path);
+  ASSERT_EQ(parts.size(), atlas.attributes.size() * atlas.images.size() + 2);
+  // The texture parts come last, in the order of the metadata's list.
+  EXPECT_EQ(parts[parts.size() - 2].header.name(), "BaseColor.texture");
+  EXPECT_EQ(parts.back().header.name(), "Extra.texture");
+  const Json metadata = metadataOf(parts);
+  ASSERT_EQ(metadata["textures"].size(), 2u);
+  for (size_t t = 0; t < 2; ++t)
+  {
+    const tc::AtlasTexture& texture = atlas.textures[t];
+    const Json& entry = metadata["textures"][t];
+    EXPECT_EQ(entry["name"], texture.name);
+    EXPECT_EQ(entry["source"], texture.source);
+    EXPECT_EQ(entry["width"], texture.width);
+    EXPECT_EQ(entry["height"], texture.height);
+    EXPECT_EQ(entry["crc32"],
+      static_cast<uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(texture.rgba.data()),
+        static_cast<uInt>(texture.rgba.size()))));
+    ExrPart& part = partNamed(parts, texture.name + ".texture");
+    const Imath::Box2i window = part.header.dataWindow();
+    EXPECT_EQ(window.max.x + 1, texture.width);
+    EXPECT_EQ(window.max.y + 1, texture.height);
+    ASSERT_EQ(part.codes.size(), 1u);
+    ASSERT_TRUE(part.channels.empty());
+    // One UINT channel: R in the lowest byte, then G, B, A; pixel (x, y) is texel (x, y), row 0
+    // the texture's bottom.
+    const std::vector<uint32_t>& rgba = part.codes.at("RGBA");
+    for (size_t i = 0; i < rgba.size(); ++i)
+    {
+      const uint8_t* b = texture.rgba.data() + 4 * i;
+      ASSERT_EQ(rgba[i], b[0] | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24)
+        << texture.name << " texel " << i;
+    }
+  }
+}
+
+TEST_F(AtlasIo, RefusesDamagedTextures)
+{
+  const std::string good = file("good5.exr");
+  tc::writeAtlas(withTextures(tetrahedronAtlas(2, true)), good);
+  const auto damaged = [&](const std::function<void(std::vector<ExrPart>&)>& edit)
+  { return damagedCopyError(good, edit); };
+  const auto metadataDamaged = [&](const std::function<void(Json&)>& edit)
+  { return damagedCopyError(good, metadataEdit(edit)); };
+  std::string error = damaged([](std::vector<ExrPart>& parts)
+    { partNamed(parts, "BaseColor.texture").codes.at("RGBA")[40] ^= 0x100u; });
+  EXPECT_TRUE(mentions(error, "'BaseColor.texture' do not match their checksum")) << error;
+  error = damaged([](std::vector<ExrPart>& parts) { parts.pop_back(); });
+  EXPECT_TRUE(mentions(error, "2 textures")) << error;
+  error = metadataDamaged([](Json& m) { m["textures"][1]["name"] = "Other"; });
+  EXPECT_TRUE(mentions(error, "part 'Other.texture' is missing")) << error;
+  error = metadataDamaged([](Json& m) { m["textures"][0]["width"] = 38; });
+  EXPECT_TRUE(mentions(error, "part 'BaseColor.texture' covers pixels (0, 0) .. (36, 18)"))
+    << error;
+  error = metadataDamaged([](Json& m) { m["textures"][0]["height"] = 0; });
+  EXPECT_TRUE(mentions(error, "textures[0].height = 0, out of range")) << error;
+  error = metadataDamaged([](Json& m) { m.erase("textures"); });
+  EXPECT_TRUE(mentions(error, "lacks the root.textures")) << error;
+  error = metadataDamaged([](Json& m) { m["textures"][1]["name"] = "BaseColor"; });
+  EXPECT_FALSE(error.empty());
+  error = metadataDamaged([](Json& m) { m["textures"][0]["source"] = 3; });
+  EXPECT_TRUE(mentions(error, "textures[0].source that is not a string")) << error;
+  // A texture part whose channel is float.
+  error = damaged(
+    [](std::vector<ExrPart>& parts)
+    {
+      ExrPart& part = partNamed(parts, "Extra.texture");
+      part.codes.clear();
+      part.header.channels() = Imf::ChannelList();
+      part.header.channels().insert("RGBA", Imf::Channel(Imf::FLOAT));
+      part.channels["RGBA"] = { 1.0f };
+    });
+  EXPECT_TRUE(mentions(error, "channel 'RGBA' is not full-resolution 32-bit unsigned integer"))
+    << error;
+}
+
+TEST(AtlasTextures, ValidationNamesWhatIsWrong)
+{
+  const tc::Atlas good = withTextures(tetrahedronAtlas(1, false));
+  ASSERT_NO_THROW(tc::validateAtlas(good));
+  const auto invalid = [&good](const std::function<void(tc::Atlas&)>& edit)
+  {
+    tc::Atlas atlas = good;
+    edit(atlas);
+    try
+    {
+      tc::validateAtlas(atlas);
+    }
+    catch (const tc::InputError& error)
+    {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  std::string error = invalid([](tc::Atlas& a) { a.textures[0].rgba.pop_back(); });
+  EXPECT_TRUE(mentions(error, "texture 0 ('BaseColor') holds 2811 bytes, not the 2812")) << error;
+  error = invalid([](tc::Atlas& a) { a.textures[1].name = "BaseColor"; });
+  EXPECT_TRUE(mentions(error, "has the name of texture 0")) << error;
+  error = invalid([](tc::Atlas& a) { a.textures[1].name.clear(); });
+  EXPECT_TRUE(mentions(error, "texture 1 has no name")) << error;
+  error = invalid([](tc::Atlas& a) { a.textures[1].width = 70000; });
+  EXPECT_TRUE(mentions(error, "size 70000 x 1")) << error;
+  error = invalid([](tc::Atlas& a) { a.attributes.back().name = "UV"; });
+  EXPECT_TRUE(mentions(error, "no attribute TextureCoordinates with 2 components")) << error;
+  EXPECT_EQ(tc::findAttribute(good, tc::kAtlasTextureCoordinates), 2);
+  EXPECT_EQ(tc::findAttribute(good, "Missing"), -1);
 }

@@ -53,6 +53,44 @@ void checkAttributes(const Atlas& atlas)
   }
 }
 
+/// Textures named once each, of a size a GPU texture can have, and the coordinates to look them
+/// up.
+void checkTextures(const Atlas& atlas)
+{
+  if (atlas.textures.empty())
+  {
+    return;
+  }
+  const int32_t uv = findAttribute(atlas, kAtlasTextureCoordinates);
+  if (uv < 0 || atlas.attributes[static_cast<size_t>(uv)].components != 2)
+  {
+    fail(std::string("it has textures but no attribute ") + kAtlasTextureCoordinates +
+      " with 2 components to look them up");
+  }
+  for (size_t t = 0; t < atlas.textures.size(); ++t)
+  {
+    const AtlasTexture& texture = atlas.textures[t];
+    const std::string what = "texture " + std::to_string(t) + " ('" + texture.name + "')";
+    if (texture.name.empty())
+    {
+      fail("texture " + std::to_string(t) + " has no name");
+    }
+    if (texture.width < 1 || texture.height < 1 || texture.width > (1 << 16) ||
+      texture.height > (1 << 16))
+    {
+      fail(what + " has size " + std::to_string(texture.width) + " x " +
+        std::to_string(texture.height) + "; 1 to 65536 texels a side");
+    }
+    for (size_t u = 0; u < t; ++u)
+    {
+      if (atlas.textures[u].name == texture.name)
+      {
+        fail(what + " has the name of texture " + std::to_string(u));
+      }
+    }
+  }
+}
+
 /// One image per mip step of the finest chart, each of a size a GPU texture can have.
 void checkImageSizes(const Atlas& atlas)
 {
@@ -257,9 +295,22 @@ void checkSharedSide(const Atlas& atlas, size_t c, int k)
 }
 } // namespace
 
+int32_t findAttribute(const Atlas& atlas, const std::string& name)
+{
+  for (size_t a = 0; a < atlas.attributes.size(); ++a)
+  {
+    if (atlas.attributes[a].name == name)
+    {
+      return static_cast<int32_t>(a);
+    }
+  }
+  return -1;
+}
+
 void validateAtlasLayout(const Atlas& atlas)
 {
   checkAttributes(atlas);
+  checkTextures(atlas);
   if (atlas.charts.empty())
   {
     fail("it has no chart");
@@ -276,6 +327,18 @@ void validateAtlas(const Atlas& atlas)
 {
   validateAtlasLayout(atlas);
   checkImageData(atlas);
+  for (size_t t = 0; t < atlas.textures.size(); ++t)
+  {
+    const AtlasTexture& texture = atlas.textures[t];
+    const size_t bytes =
+      static_cast<size_t>(texture.width) * static_cast<size_t>(texture.height) * 4;
+    if (texture.rgba.size() != bytes)
+    {
+      fail("texture " + std::to_string(t) + " ('" + texture.name + "') holds " +
+        std::to_string(texture.rgba.size()) + " bytes, not the " + std::to_string(bytes) +
+        " of its size");
+    }
+  }
   // Shared sides, and corner k of every chart: the base vertex's position, the same in every
   // chart around it.
   std::unordered_map<int32_t, const float*> cornerPosition;

@@ -77,6 +77,16 @@ Imf::FrameBuffer frameBuffer(float* data, int32_t width, int32_t components)
   return frameBuffer(reinterpret_cast<char*>(data), width, channelNames(components), Imf::FLOAT);
 }
 
+/// The one channel of a texture's part: each texel's R, G, B, A bytes as one 32-bit UINT,
+/// R in the lowest byte (OpenEXR has no 8-bit type; this stores the bytes losslessly).
+const std::vector<std::string> kTextureChannels{ "RGBA" };
+
+/// A frame buffer over the bytes of a texture: 4 a texel, rows from the bottom.
+Imf::FrameBuffer textureBuffer(const AtlasTexture& texture, uint8_t* bytes)
+{
+  return frameBuffer(reinterpret_cast<char*>(bytes), texture.width, kTextureChannels, Imf::UINT);
+}
+
 /// A frame buffer over the codes of coded attribute a (version 4).
 Imf::FrameBuffer codeBuffer(uint32_t* data, int32_t width, size_t a)
 {
@@ -150,6 +160,7 @@ struct WritePlan
   std::vector<ImageLayout> layouts;    ///< per image: compact whenever its texels allow it
   std::vector<uint8_t> compact;        ///< per image: layouts[k].compact
   AtlasChecksums crcs;                 ///< per image, per attribute
+  std::vector<uint32_t> textureCrcs;   ///< per texture
   std::optional<AtlasLattice> lattice; ///< version 4: Position and Normal as codes on it
   uint64_t totalFloats = 0;            ///< 4-byte values in all parts
   int32_t displayWidth = 1;            ///< of the largest image
@@ -179,16 +190,38 @@ WritePlan planParts(const Atlas& atlas)
     plan.displayWidth = std::max(plan.displayWidth, image.width);
     plan.displayHeight = std::max(plan.displayHeight, image.height);
   }
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    plan.textureCrcs.push_back(crc32Of(texture.rgba.data(), texture.rgba.size()));
+    plan.totalFloats += texture.rgba.size() / 4;
+    plan.displayWidth = std::max(plan.displayWidth, texture.width);
+    plan.displayHeight = std::max(plan.displayHeight, texture.height);
+  }
   return plan;
 }
 
-/// One header per part, coarsest image first, so that a file read front to back refines; the
-/// first carries the metadata.
-std::vector<Imf::Header> partHeaders(const Atlas& atlas, const WritePlan& plan,
-  const std::string& metadata, const std::string& packedMetadata)
+/// A scan-line part of `width` x `height` pixels in the file's display window, compressed.
+Imf::Header partHeader(
+  const WritePlan& plan, const std::string& name, int32_t width, int32_t height)
 {
   const Imath::Box2i display(
     Imath::V2i(0, 0), Imath::V2i(plan.displayWidth - 1, plan.displayHeight - 1));
+  Imf::Header header(display, Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(width - 1, height - 1)));
+  header.setName(name);
+  header.setType(Imf::SCANLINEIMAGE);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  // Deflate's level 6: on the byte planes of version 4 within 1 % of level 9 (whose long
+  // match chains over the planes' zeros take twice the time) and 3 % smaller than
+  // OpenEXR's default 4.
+  header.zipCompressionLevel() = 6;
+  return header;
+}
+
+/// One header per part, coarsest image first, so that a file read front to back refines, then
+/// one per texture; the first carries the metadata.
+std::vector<Imf::Header> partHeaders(const Atlas& atlas, const WritePlan& plan,
+  const std::string& metadata, const std::string& packedMetadata)
+{
   std::vector<Imf::Header> headers;
   for (size_t k = atlas.images.size(); k-- > 0;)
   {
@@ -197,15 +230,7 @@ std::vector<Imf::Header> partHeaders(const Atlas& atlas, const WritePlan& plan,
     for (size_t a = 0; a < atlas.attributes.size(); ++a)
     {
       const AtlasAttribute& attribute = atlas.attributes[a];
-      Imf::Header header(
-        display, Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(image.width - 1, height - 1)));
-      header.setName(partName(attribute.name, k));
-      header.setType(Imf::SCANLINEIMAGE);
-      header.compression() = Imf::ZIP_COMPRESSION;
-      // Deflate's level 6: on the byte planes of version 4 within 1 % of level 9 (whose long
-      // match chains over the planes' zeros take twice the time) and 3 % smaller than
-      // OpenEXR's default 4.
-      header.zipCompressionLevel() = 6;
+      Imf::Header header = partHeader(plan, partName(attribute.name, k), image.width, height);
       const bool codes = coded(plan.lattice, a);
       for (const std::string& channel :
         codes ? codeChannelNames(a) : channelNames(attribute.components))
@@ -222,6 +247,13 @@ std::vector<Imf::Header> partHeaders(const Atlas& atlas, const WritePlan& plan,
       }
       headers.push_back(std::move(header));
     }
+  }
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    Imf::Header header =
+      partHeader(plan, texturePartName(texture.name), texture.width, texture.height);
+    header.channels().insert(kTextureChannels[0], Imf::Channel(Imf::UINT));
+    headers.push_back(std::move(header));
   }
   return headers;
 }
@@ -268,6 +300,13 @@ void writeParts(Imf::MultiPartOutputFile& file, const Atlas& atlas, const WriteP
       inBlocks(layout.partHeight, rowFloats, floatsWritten, plan.totalFloats, progress,
         [&part](int32_t, int32_t rows) { part.writePixels(rows); });
     }
+  }
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    Imf::OutputPart part(file, index++);
+    part.setFrameBuffer(textureBuffer(texture, const_cast<uint8_t*>(texture.rgba.data())));
+    inBlocks(texture.height, static_cast<size_t>(texture.width), floatsWritten, plan.totalFloats,
+      progress, [&part](int32_t, int32_t rows) { part.writePixels(rows); });
   }
 }
 
@@ -455,20 +494,35 @@ std::map<std::string, int> partIndex(
       parts.emplace(file.header(p).name(), p);
     }
   }
-  const size_t expectedParts = atlas.attributes.size() * atlas.images.size();
+  const size_t expectedParts =
+    atlas.attributes.size() * atlas.images.size() + atlas.textures.size();
   if (static_cast<size_t>(file.parts()) != expectedParts)
   {
     throw InputError("cannot read atlas " + path + ": it has " + std::to_string(file.parts()) +
       " parts but its metadata describes " + std::to_string(expectedParts) + " (" +
       std::to_string(atlas.attributes.size()) + " attributes x " +
-      std::to_string(atlas.images.size()) + " images); the file is damaged");
+      std::to_string(atlas.images.size()) + " images + " + std::to_string(atlas.textures.size()) +
+      " textures); the file is damaged");
   }
   return parts;
 }
 
+/// The index of part `name`, which must be there.
+int partOf(
+  const std::string& path, const std::map<std::string, int>& parts, const std::string& name)
+{
+  const auto it = parts.find(name);
+  if (it == parts.end())
+  {
+    throw InputError("cannot read atlas " + path + ": part '" + name +
+      "' is missing; the file is damaged or was not written by TriChart");
+  }
+  return it->second;
+}
+
 /// Per image: its layout, every part of it checked against it (present, type, size,
-/// channels); the floats the parts store in all. Refuses more texel data than the file's size
-/// can hold.
+/// channels), and every texture's part; the 4-byte values the parts store in all. Refuses more
+/// texel data than the file's size can hold.
 std::vector<ImageLayout> checkParts(const std::string& path, Imf::MultiPartInputFile& file,
   const std::map<std::string, int>& parts, const AtlasMetadata& metadata, uint64_t fileSize,
   uint64_t& storedFloats)
@@ -484,20 +538,24 @@ std::vector<ImageLayout> checkParts(const std::string& path, Imf::MultiPartInput
     for (size_t a = 0; a < atlas.attributes.size(); ++a)
     {
       const std::string name = partName(atlas.attributes[a].name, k);
-      const auto it = parts.find(name);
-      if (it == parts.end())
-      {
-        throw InputError("cannot read atlas " + path + ": part '" + name +
-          "' is missing; the file is damaged or was not written by TriChart");
-      }
       const bool codes = coded(metadata.lattice, a);
-      checkPart(path, name, file.header(it->second), image.width, layouts[k].partHeight,
+      checkPart(path, name, file.header(partOf(path, parts, name)), image.width,
+        layouts[k].partHeight,
         codes ? codeChannelNames(a) : channelNames(atlas.attributes[a].components),
         codes ? Imf::UINT : Imf::FLOAT);
       totalFloats += floatCount(image, atlas.attributes[a]);
       storedFloats += partFloats(
         image.width, layouts[k].partHeight, { "", storedComponents(atlas, metadata.lattice, a) });
     }
+  }
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    const std::string name = texturePartName(texture.name);
+    checkPart(path, name, file.header(partOf(path, parts, name)), texture.width, texture.height,
+      kTextureChannels, Imf::UINT);
+    const uint64_t texels = static_cast<uint64_t>(texture.width) * texture.height;
+    totalFloats += texels;
+    storedFloats += texels;
   }
   if (totalFloats * sizeof(float) > kMaxCompressionRatio * std::max<uint64_t>(fileSize, 1))
   {
@@ -509,13 +567,13 @@ std::vector<ImageLayout> checkParts(const std::string& path, Imf::MultiPartInput
 }
 
 /// The texels of every image, coarsest first: a compact image takes its inherited texels from
-/// the next coarser one. Refuses texels that do not match their checksum.
+/// the next coarser one. Refuses texels that do not match their checksum. Counts the values
+/// read into `floatsRead`.
 void readImages(const std::string& path, Imf::MultiPartInputFile& file,
   const std::map<std::string, int>& parts, const std::vector<ImageLayout>& layouts,
-  uint64_t storedFloats, AtlasMetadata& metadata, const Progress& progress)
+  uint64_t& floatsRead, uint64_t storedFloats, AtlasMetadata& metadata, const Progress& progress)
 {
   Atlas& atlas = metadata.atlas;
-  uint64_t floatsRead = 0;
   std::optional<CodeReader> codes;
   if (metadata.lattice)
   {
@@ -565,6 +623,29 @@ void readImages(const std::string& path, Imf::MultiPartInputFile& file,
   }
 }
 
+/// The bytes of every texture, after the images. Refuses bytes that do not match their checksum.
+void readTextures(const std::string& path, Imf::MultiPartInputFile& file,
+  const std::map<std::string, int>& parts, uint64_t& valuesRead, uint64_t storedFloats,
+  AtlasMetadata& metadata, const Progress& progress)
+{
+  for (size_t t = 0; t < metadata.atlas.textures.size(); ++t)
+  {
+    AtlasTexture& texture = metadata.atlas.textures[t];
+    const std::string name = texturePartName(texture.name);
+    texture.rgba.assign(
+      static_cast<size_t>(texture.width) * static_cast<size_t>(texture.height) * 4, 0);
+    Imf::InputPart part(file, parts.at(name));
+    part.setFrameBuffer(textureBuffer(texture, texture.rgba.data()));
+    inBlocks(texture.height, static_cast<size_t>(texture.width), valuesRead, storedFloats, progress,
+      [&part](int32_t y, int32_t rows) { part.readPixels(y, y + rows - 1); });
+    if (crc32Of(texture.rgba.data(), texture.rgba.size()) != metadata.textureCrcs[t])
+    {
+      throw InputError("cannot read atlas " + path + ": the texels of part '" + name +
+        "' do not match their checksum; the file is damaged (write the atlas again)");
+    }
+  }
+}
+
 /// The atlas in `path` (headers checked), unvalidated; OpenEXR's exceptions pass through.
 Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& progress)
 {
@@ -584,7 +665,9 @@ Atlas readAtlasFile(const std::string& path, uint64_t fileSize, const Progress& 
   uint64_t storedFloats = 0;
   const std::vector<ImageLayout> layouts =
     checkParts(path, file, parts, metadata, fileSize, storedFloats);
-  readImages(path, file, parts, layouts, storedFloats, metadata, progress);
+  uint64_t valuesRead = 0;
+  readImages(path, file, parts, layouts, valuesRead, storedFloats, metadata, progress);
+  readTextures(path, file, parts, valuesRead, storedFloats, metadata, progress);
   return std::move(metadata.atlas);
 }
 
@@ -667,8 +750,8 @@ void writeAtlas(const Atlas& atlas, const std::string& path, const Progress& pro
   const WritePlan plan = planParts(atlas);
 
   // 3. The metadata, deflated into the header of the first part.
-  const std::string metadata =
-    metadataJson(atlas, plan.crcs, plan.compact, plan.lattice ? &*plan.lattice : nullptr);
+  const std::string metadata = metadataJson(
+    atlas, plan.crcs, plan.textureCrcs, plan.compact, plan.lattice ? &*plan.lattice : nullptr);
   std::vector<Imf::Header> headers =
     partHeaders(atlas, plan, metadata, compressMetadata(metadata, path));
 

@@ -227,7 +227,7 @@ Json checkedJson(const std::string& path, const StoredMetadata& stored)
       std::to_string(version->get<int64_t>()) + " but this TriChart reads versions up to " +
       std::to_string(kAtlasFileVersion) + "; update TriChart to read it");
   }
-  // Version 1 stored the text plainly, versions 2 to 4 compressed: anything else is not our
+  // Version 1 stored the text plainly, versions 2 to 5 compressed: anything else is not our
   // writer's.
   if (stored.compressed != (version->get<int64_t>() >= 2))
   {
@@ -320,6 +320,27 @@ AtlasLattice parseLattice(const MetadataReader& in, const Json& root)
   return out;
 }
 
+/// "textures" (version 5): at most 64, each named once with its size and checksum; the texels
+/// are the parts'.
+void parseTextures(const MetadataReader& in, const Json& root, AtlasMetadata& out)
+{
+  const Json& textures = in.array(in.member(root, "textures", "the root"), 1, 64, "textures");
+  for (size_t t = 0; t < textures.size(); ++t)
+  {
+    const std::string where = "textures[" + std::to_string(t) + "]";
+    AtlasTexture texture;
+    texture.name = in.string(in.member(textures[t], "name", where), where + ".name");
+    texture.source = in.string(in.member(textures[t], "source", where), where + ".source");
+    texture.width = static_cast<int32_t>(
+      in.integer(in.member(textures[t], "width", where), 1, 1 << 16, where + ".width"));
+    texture.height = static_cast<int32_t>(
+      in.integer(in.member(textures[t], "height", where), 1, 1 << 16, where + ".height"));
+    out.textureCrcs.push_back(static_cast<uint32_t>(
+      in.integer(in.member(textures[t], "crc32", where), 0, UINT32_MAX, where + ".crc32")));
+    out.atlas.textures.push_back(std::move(texture));
+  }
+}
+
 /// Chart c of "charts".
 AtlasChart parseChart(const MetadataReader& in, const Json& j, size_t c)
 {
@@ -365,6 +386,11 @@ uint32_t crc32Of(const void* data, size_t bytes)
     crc32_z(crc32_z(0L, Z_NULL, 0), static_cast<const Bytef*>(data), static_cast<z_size_t>(bytes)));
 }
 
+std::string texturePartName(const std::string& name)
+{
+  return name + ".texture";
+}
+
 uint32_t crc32Of(const std::string& text)
 {
   return crc32Of(text.data(), text.size());
@@ -403,14 +429,25 @@ void checkWritable(const Atlas& atlas, const std::string& path)
         "' is not UTF-8 text; rename the attribute");
     }
   }
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    if (!isUtf8(texture.name))
+    {
+      throw InputError("cannot write atlas " + path + ": texture name '" + texture.name +
+        "' is not UTF-8 text; rename the texture");
+    }
+  }
 }
 
 std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
-  const std::vector<uint8_t>& compact, const AtlasLattice* lattice)
+  const std::vector<uint32_t>& textureCrcs, const std::vector<uint8_t>& compact,
+  const AtlasLattice* lattice)
 {
   Json root;
   root["format"] = kFormatName;
-  root["version"] = lattice ? kAtlasFileVersion : kAtlasFloatVersion;
+  root["version"] = !atlas.textures.empty() ? kAtlasFileVersion
+    : lattice                               ? kAtlasLatticeVersion
+                                            : kAtlasFloatVersion;
   root["source"] = atlas.source;
   root["inputPoints"] = atlas.inputPoints;
   root["inputTriangles"] = atlas.inputTriangles;
@@ -434,12 +471,22 @@ std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
       { { "width", atlas.images[k].width }, { "height", atlas.images[k].height },
         { "texels", compact[k] ? "new" : "all" }, { "crc32", crcs[k] } });
   }
+  if (!atlas.textures.empty())
+  {
+    root["textures"] = Json::array();
+    for (size_t t = 0; t < atlas.textures.size(); ++t)
+    {
+      const AtlasTexture& texture = atlas.textures[t];
+      root["textures"].push_back({ { "name", texture.name }, { "source", texture.source },
+        { "width", texture.width }, { "height", texture.height }, { "crc32", textureCrcs[t] } });
+    }
+  }
   root["charts"] = Json::array();
   for (const AtlasChart& chart : atlas.charts)
   {
     root["charts"].push_back(chartJson(chart));
   }
-  // Bytes that are not UTF-8 can only come from `source` here (names were checked).
+  // Bytes that are not UTF-8 can only come from the sources here (names were checked).
   return root.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
@@ -567,7 +614,13 @@ AtlasMetadata parseMetadata(const std::string& path, const StoredMetadata& store
   // allocated from them.
   parseAttributes(in, root, atlas);
   parseImages(in, root, out);
-  if (root["version"].get<int64_t>() >= 4)
+  const int64_t version = root["version"].get<int64_t>();
+  if (version >= 5)
+  {
+    parseTextures(in, root, out);
+  }
+  // Version 4 codes Position and Normal always, version 5 when it has a lattice.
+  if (version == 4 || (version >= 5 && root.contains("lattice")))
   {
     out.lattice = parseLattice(in, root);
     for (size_t k = 0; k < out.compact.size(); ++k)
@@ -575,8 +628,8 @@ AtlasMetadata parseMetadata(const std::string& path, const StoredMetadata& store
       if (!out.compact[k])
       {
         in.fail("has images[" + std::to_string(k) +
-          "].texels = \"all\", which version 4 does not write (its codes need every image "
-          "compact)");
+          "].texels = \"all\", which a file with a lattice does not have (its codes need every "
+          "image compact)");
       }
     }
   }

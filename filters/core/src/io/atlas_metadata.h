@@ -31,18 +31,25 @@ uint32_t crc32Of(const std::string& text);
 /// Per image, per attribute: the CRC-32 of its float data.
 using AtlasChecksums = std::vector<std::vector<uint32_t>>;
 
-/// Refuses what the metadata cannot hold exactly: NaN doubles and attribute names that are not
-/// UTF-8 (validateAtlas has checked the layout).
+/// The name of the part that holds texture `name`: "<name>.texture" (an attribute's parts end in
+/// ".<image>", digits, so no texture's part name is an attribute's).
+std::string texturePartName(const std::string& name);
+
+/// Refuses what the metadata cannot hold exactly: NaN doubles and attribute and texture names
+/// that are not UTF-8 (validateAtlas has checked the layout).
 /// @throws InputError  "cannot write atlas <path>: ..."
 void checkWritable(const Atlas& atlas, const std::string& path);
 
 /// The metadata JSON text of `atlas` (everything but the texels), bytes of `source` that are
-/// not UTF-8 written as U+FFFD: version 4 with `lattice`, else version 3.
+/// not UTF-8 written as U+FFFD: version 5 when the atlas has textures, else version 4 with
+/// `lattice`, else version 3.
 /// @param[in] crcs     per image, per attribute
+/// @param[in] textureCrcs  per texture, of its bytes
 /// @param[in] compact  per image: 1 if its parts hold only its new texels
 /// @param[in] lattice  the lattice Position and Normal are coded on, or null (floats)
 std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
-  const std::vector<uint8_t>& compact, const AtlasLattice* lattice);
+  const std::vector<uint32_t>& textureCrcs, const std::vector<uint8_t>& compact,
+  const AtlasLattice* lattice);
 
 /// The metadata JSON text deflated for "trichartAtlasZ" (zlib stream, best compression).
 /// @throws InputError  when the text or its compressed form exceed what an OpenEXR attribute
@@ -75,6 +82,7 @@ struct AtlasMetadata
 {
   Atlas atlas;                         ///< images with width and height only, no data
   AtlasChecksums crcs;                 ///< per image, per attribute
+  std::vector<uint32_t> textureCrcs;   ///< per texture (its bytes empty until read)
   std::vector<uint8_t> compact;        ///< per image: 1 if its parts hold only its new texels
   std::optional<AtlasLattice> lattice; ///< version 4: Position and Normal are coded on it
 };

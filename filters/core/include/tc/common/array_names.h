@@ -84,6 +84,10 @@ constexpr const char* kSampleChart = "SampleChart"; ///< rebuilt point: chart, i
 constexpr const char* kChartsBlock = "Charts";      ///< block 0 of the atlas: the chart table
 constexpr const char* kImagesBlock = "Images"; ///< block 1 of the atlas: one image per mip step
 constexpr const char* kImageBlockPrefix = "Image "; ///< image k of block 1 is "Image k"
+/// block 2 of an atlas with textures: one vtkImageData per texture, named as the texture
+constexpr const char* kTexturesBlock = "Textures";
+constexpr const char* kTextureBytes = "RGBA";           ///< point: unsigned char, 4 a texel
+constexpr const char* kTextureSource = "TextureSource"; ///< field of a texture: its file
 
 // tcSurfaceDistance
 constexpr const char* kDistance = "Distance";             ///< point: distance to the other surface

@@ -32,6 +32,10 @@ namespace tc
 /// Names of the attributes every atlas carries first.
 constexpr const char* kAtlasPosition = "Position";
 constexpr const char* kAtlasNormal = "Normal";
+/// The attribute a texture is looked up with: (u, v), v = 0 at a texture's bottom row.
+constexpr const char* kAtlasTextureCoordinates = "TextureCoordinates";
+/// The name of the input's base-colour texture among Atlas::textures.
+constexpr const char* kAtlasBaseColorTexture = "BaseColor";
 
 struct AtlasChart
 {
@@ -70,11 +74,24 @@ struct AtlasImage
   std::vector<std::vector<float>> data; ///< per attribute: height x width x components
 };
 
+/// An image the atlas carries for its renderer and exporters, looked up by the
+/// TextureCoordinates attribute (the input's base-colour texture): 8-bit RGBA, as the input's
+/// file stored it (sRGB colours for a base-colour texture).
+struct AtlasTexture
+{
+  std::string name;   ///< its role, unique in the atlas: kAtlasBaseColorTexture
+  std::string source; ///< the file the input named, or "embedded:<k>" for its k-th image
+  int32_t width = 0;
+  int32_t height = 0;
+  std::vector<uint8_t> rgba; ///< height x width x 4 bytes, row 0 = the bottom (v = 0)
+};
+
 struct Atlas
 {
   std::vector<AtlasAttribute> attributes; ///< [0] Position (3), [1] Normal (3), then user arrays
   std::vector<AtlasImage> images;         ///< image k = 0 (finest) .. max maxLevel
   std::vector<AtlasChart> charts;         ///< chart c = base face c = PatchId c
+  std::vector<AtlasTexture> textures;     ///< none, or the textures the attributes refer to
   int64_t inputPoints = 0;                ///< of the mesh the atlas was built from
   int64_t inputTriangles = 0;
   double inputDiagonal = 0.0; ///< bounding-box diagonal of that mesh
@@ -191,14 +208,19 @@ void forEachImageSample(const Atlas& atlas, size_t k, F&& f)
   }
 }
 
+/// The index of attribute `name` in atlas.attributes, -1 when it has none of that name.
+int32_t findAttribute(const Atlas& atlas, const std::string& name);
+
 /// Checks the layout and every invariant above (sizes, texels inside their image and not shared
-/// by two charts, neighbour symmetry, bit-identical shared sides and corners).
+/// by two charts, neighbour symmetry, bit-identical shared sides and corners) and the textures.
 /// @throws InputError naming the first chart and rule that fail
 void validateAtlas(const Atlas& atlas);
 
 /// The part of validateAtlas that needs no texel: attributes, image sizes, chart fields,
 /// neighbours and partners, every chart's grid inside its images and no texel shared by two
-/// charts (image data may be empty). What makes atlasTexel safe to index an image with.
+/// charts (image data may be empty), and the textures: each named once, 1 to 2^16 texels wide
+/// and high (their bytes may be empty; validateAtlas counts them), and only beside a
+/// TextureCoordinates attribute of 2 components. What makes atlasTexel safe to index an image with.
 /// @throws InputError naming the first chart and rule that fail
 void validateAtlasLayout(const Atlas& atlas);
 } // namespace tc

@@ -18,10 +18,13 @@
 
 namespace tc
 {
-/// Version of the atlas file format that writeAtlas writes (Position and Normal as lattice
-/// codes) whenever every position and normal decodes exactly from its code, as in every atlas
-/// the pipeline builds; readAtlas reads it and older ones.
-constexpr int kAtlasFileVersion = 4;
+/// The newest version of the atlas file format, which readAtlas reads with all older ones and
+/// writeAtlas writes for an atlas with textures: version 4 or 3 (lattice or not) plus a part
+/// per texture.
+constexpr int kAtlasFileVersion = 5;
+/// The version writeAtlas writes for an atlas without textures whose every position and normal
+/// decodes exactly from its lattice code, as in every atlas the pipeline builds.
+constexpr int kAtlasLatticeVersion = 4;
 /// The version writeAtlas writes for any other atlas: every attribute as float32.
 constexpr int kAtlasFloatVersion = 3;
 
