@@ -122,3 +122,75 @@ def test_color_by_texture_matches_vtk_rendering_the_textured_input(sphere, tmp_p
         lod.SetColorMode(trichart.tcLODMapper.ColorByActor)
         plain = render(lod, None, temp / f"texture_plain_{name}.png", direction)
         assert differing_pixels(plain, expected, 48) > 0.1 * SIZE[0] * SIZE[1]
+
+
+def mesh_triangles(mesh):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    return vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+
+
+def triangle_coordinates(mesh):
+    """Per triangle of `mesh`, its corners' TextureCoordinates (#F x 3 x 2) and positions."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    triangles = mesh_triangles(mesh)
+    uv = vtk_to_numpy(mesh.GetPointData().GetArray(tcArrayNames.TextureCoordinates()))
+    points = vtk_to_numpy(mesh.GetPoints().GetData())
+    return uv[triangles], points, numpy.asarray(uv)
+
+
+def test_rebuilt_mesh_splits_the_seam_so_each_side_keeps_its_coordinates(sphere):
+    import numpy
+
+    _, atlas = sphere
+    mesh = trichart.rebuild(atlas)
+    corners, points, uv = triangle_coordinates(mesh)
+    # Away from the poles (where u turns all the way round a point) a triangle spans a few
+    # percent of u; one that reached across the seam (a welded point carrying the other side's u)
+    # would span almost all of it.
+    span = corners[:, :, 0].max(axis=1) - corners[:, :, 0].min(axis=1)
+    y = numpy.abs(points[mesh_triangles(mesh)][:, :, 1]).max(axis=1)
+    assert span[y < 0.98].max() < 0.1, span[y < 0.98].max()
+    assert span.max() < 0.5, span.max()
+    # The seam's points come twice: the same position, u = 0 on one copy and 1 on the other.
+    _, first, counts = numpy.unique(points, axis=0, return_index=True, return_counts=True)
+    doubled = numpy.flatnonzero(counts > 1)
+    assert len(doubled) >= 9, len(doubled)
+    assert len(points) - len(first) == int((counts - 1).sum())
+
+
+def test_gltf_export_carries_the_texture_and_its_coordinates(sphere, tmp_path):
+    import json
+    import struct
+
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    mesh, atlas = sphere
+    out = tmp_path / "sphere.glb"
+    lods = trichart.export_gltf(atlas, out)
+    data = out.read_bytes()
+    length = struct.unpack_from("<I", data, 12)[0]
+    gltf = json.loads(data[20:20 + length])
+    material = gltf["materials"][0]["pbrMetallicRoughness"]
+    assert material["baseColorTexture"]["index"] == 0
+    assert material.get("baseColorFactor", [1, 1, 1, 1]) == [1, 1, 1, 1]  # white: the default
+    assert gltf["images"][0]["mimeType"] == "image/png" and "bufferView" in gltf["images"][0]
+    assert gltf["samplers"][0]["wrapS"] == 10497  # REPEAT
+    assert "TEXCOORD_0" in gltf["meshes"][0]["primitives"][0]["attributes"]
+    assert not any(name.startswith("_") for name in gltf["meshes"][0]["primitives"][0]["attributes"])
+    # Read back by the mesh reader (Assimp): the texture byte for byte (PNG is lossless) and
+    # LOD 0's coordinates those of the rebuilt finest level (Assimp flips v back).
+    read = trichart.read_mesh(out)
+    fd = read.GetFieldData()
+    assert numpy.array_equal(vtk_to_numpy(fd.GetArray(tcArrayNames.BaseColorTexture())),
+                             vtk_to_numpy(mesh.GetFieldData().GetArray(
+                                 tcArrayNames.BaseColorTexture())))
+    rebuilt = trichart.rebuild(atlas)
+    assert read.GetNumberOfPoints() == rebuilt.GetNumberOfPoints()
+    assert read.GetNumberOfPolys() == lods[0]["triangles"] == rebuilt.GetNumberOfPolys()
+    ours = vtk_to_numpy(rebuilt.GetPointData().GetArray(tcArrayNames.TextureCoordinates()))
+    theirs = vtk_to_numpy(read.GetPointData().GetArray(tcArrayNames.TextureCoordinates()))
+    assert numpy.abs(ours - theirs).max() < 1e-6

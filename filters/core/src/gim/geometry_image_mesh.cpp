@@ -19,9 +19,11 @@
 //     (readPointAttributes).
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace tc
@@ -363,17 +365,21 @@ RebuiltMesh startMesh(const Plan& plan)
   return out;
 }
 
+/// The levels of the charts across chart c's sides 0, 1, 2.
+std::array<int32_t, 3> levelsAcross(const Atlas& atlas, const Plan& plan, size_t c)
+{
+  const AtlasChart& chart = atlas.charts[c];
+  return { plan.levels[static_cast<size_t>(chart.neighborChart[0])],
+    plan.levels[static_cast<size_t>(chart.neighborChart[1])],
+    plan.levels[static_cast<size_t>(chart.neighborChart[2])] };
+}
+
 /// The vertex rule on every grid vertex of chart c, mapped to its output point.
 void mapChartVertices(const Atlas& atlas, const Plan& plan, size_t c, int32_t* vertexPoint)
 {
-  const AtlasChart& chart = atlas.charts[c];
   const int32_t n = plan.levels[c];
   const int32_t big = int32_t(1) << n;
-  const std::array<int32_t, 3> neighborLevels{
-    plan.levels[static_cast<size_t>(chart.neighborChart[0])],
-    plan.levels[static_cast<size_t>(chart.neighborChart[1])],
-    plan.levels[static_cast<size_t>(chart.neighborChart[2])]
-  };
+  const std::array<int32_t, 3> neighborLevels = levelsAcross(atlas, plan, c);
   for (int32_t j = 0, v = 0; j <= big; ++j)
   {
     for (int32_t i = 0; i + j <= big; ++i, ++v)
@@ -515,6 +521,126 @@ void readPointAttributes(
     },
     progress);
 }
+/// Whether values a and b of a seam attribute differ: by more than float noise (two charts
+/// resample one side independently), less than any real seam (u = 0 against 1).
+bool seamValuesDiffer(const float* a, const float* b, size_t comps)
+{
+  for (size_t x = 0; x < comps; ++x)
+  {
+    const float scale = std::max({ 1.0f, std::fabs(a[x]), std::fabs(b[x]) });
+    if (!(std::fabs(a[x] - b[x]) <= 1e-5f * scale))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The attributes that may split a point (after Position and Normal), and whether chart c's own
+/// sample (i, j) at level n holds other values of them than point p.
+struct SeamAttributes
+{
+  const Atlas& atlas;
+  const RebuiltMesh& mesh;
+
+  bool differ(size_t c, int32_t n, int32_t i, int32_t j, int32_t p) const
+  {
+    for (size_t a = 2; a < atlas.attributes.size(); ++a)
+    {
+      const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+      if (seamValuesDiffer(
+            atlasSample(atlas, static_cast<int32_t>(c), static_cast<int32_t>(a), n, i, j),
+            &mesh.attributes[a - 1][static_cast<size_t>(p) * comps], comps))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
+/// Appends point `from` again, read from chart c's sample (i, j) at level n; returns its index.
+int32_t appendSeamCopy(
+  const Atlas& atlas, RebuiltMesh& out, int32_t from, size_t c, int32_t n, int32_t i, int32_t j)
+{
+  const int32_t copy = static_cast<int32_t>(out.mesh.numPoints());
+  for (int x = 0; x < 3; ++x)
+  {
+    out.mesh.points.push_back(out.mesh.points[3 * static_cast<size_t>(from) + x]);
+  }
+  out.pointSource.insert(out.pointSource.end(), { static_cast<int32_t>(c), i, j });
+  for (size_t a = 1; a < atlas.attributes.size(); ++a)
+  {
+    const size_t comps = static_cast<size_t>(atlas.attributes[a].components);
+    const float* v = atlasSample(atlas, static_cast<int32_t>(c), static_cast<int32_t>(a), n, i, j);
+    out.attributes[a - 1].insert(out.attributes[a - 1].end(), v, v + comps);
+  }
+  return copy;
+}
+
+/// Chart c's side and corner vertices whose own values differ from their welded point's go to a
+/// copy of the point with the chart's values (one copy per distinct value, shared by the charts
+/// that agree); `remap` gets the replaced points.
+void splitChartSeams(const Atlas& atlas, const Plan& plan, size_t c, RebuiltMesh& out,
+  std::vector<std::vector<int32_t>>& copies, std::unordered_map<int32_t, int32_t>& remap)
+{
+  const int32_t n = plan.levels[c];
+  const int32_t big = int32_t(1) << n;
+  const std::array<int32_t, 3> neighborLevels = levelsAcross(atlas, plan, c);
+  int32_t* vertexPoint = out.chartVertexPoint.data() + out.chartVertexOffsets[c];
+  for (int32_t k = 0; k < 3; ++k)
+  {
+    for (int32_t t = 0; t < big; ++t)
+    {
+      const std::array<int32_t, 2> ij = sidePoint(k, t, big);
+      const std::array<int32_t, 2> g = stitchedGridPoint(n, neighborLevels, ij[0], ij[1]);
+      int32_t& point = vertexPoint[gridVertexIndex(n, ij[0], ij[1])];
+      const SeamAttributes seams{ atlas, out };
+      if (!seams.differ(c, n, g[0], g[1], point))
+      {
+        continue;
+      }
+      std::vector<int32_t>& known = copies[static_cast<size_t>(point)];
+      const auto same = std::find_if(
+        known.begin(), known.end(), [&](int32_t q) { return !seams.differ(c, n, g[0], g[1], q); });
+      const int32_t copy =
+        same != known.end() ? *same : appendSeamCopy(atlas, out, point, c, n, g[0], g[1]);
+      if (same == known.end())
+      {
+        known.push_back(copy);
+        copies.emplace_back(); // the copy's own list, last: `known` is not used after it
+      }
+      remap[point] = copy;
+      point = copy;
+    }
+  }
+}
+
+/// Points on a seam of an attribute after Position and Normal (a texture seam the atlas keeps
+/// per chart) split into one copy per distinct value, so that each chart's triangles carry its
+/// own values, as its shader draws them; the triangles follow.
+void splitSeams(const Atlas& atlas, const Plan& plan, RebuiltMesh& out)
+{
+  if (atlas.attributes.size() <= 2)
+  {
+    return;
+  }
+  std::vector<std::vector<int32_t>> copies(static_cast<size_t>(out.mesh.numPoints()));
+  size_t t = 0;
+  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  {
+    std::unordered_map<int32_t, int32_t> remap;
+    splitChartSeams(atlas, plan, c, out, copies, remap);
+    for (; t < out.chartId.size() && out.chartId[t] == static_cast<int32_t>(c); ++t)
+    {
+      for (size_t x = 3 * t; x < 3 * t + 3 && !remap.empty(); ++x)
+      {
+        const auto it = remap.find(out.mesh.triangles[x]);
+        out.mesh.triangles[x] = it == remap.end() ? out.mesh.triangles[x] : it->second;
+      }
+    }
+  }
+}
 } // namespace
 
 RebuiltMesh rebuildMesh(
@@ -546,6 +672,7 @@ RebuiltMesh rebuildMesh(
 
   // Every point's attributes from its source sample.
   readPointAttributes(atlas, plan, out, progress.sub(0.65, 1.0));
+  splitSeams(atlas, plan, out);
   return out;
 }
 

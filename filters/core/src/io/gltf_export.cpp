@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/gltf_export.h"
 
+#include "tc/common/array_names.h"
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"
 #include "tc/gim/geometry_image_mesh.h"
+#include "tc/io/png_write.h"
 
 #include "io/temporary_file.h"
 
@@ -220,6 +222,45 @@ std::vector<float> unitNormals(std::vector<float> n)
   return n;
 }
 
+/// glTF's TEXCOORD_0 from the atlas's coordinates: glTF puts v = 0 at the image's top row, the
+/// atlas (as OpenGL and VTK) at its bottom.
+std::vector<float> gltfTexCoords(std::vector<float> uv)
+{
+  for (size_t i = 1; i < uv.size(); i += 2)
+  {
+    uv[i] = 1.0f - uv[i];
+  }
+  return uv;
+}
+
+/// glTF's COLOR_0 (floats in [0, 1]) from the atlas's Colors (0 .. 255).
+std::vector<float> gltfColors(std::vector<float> rgba)
+{
+  for (float& x : rgba)
+  {
+    x = std::clamp(x / 255.0f, 0.0f, 1.0f);
+  }
+  return rgba;
+}
+
+/// The attribute semantic and values of atlas attribute a (>= 2) in glTF: TEXCOORD_0 and
+/// COLOR_0 for the input's look, "_<name>" for any other; "" for one glTF cannot hold.
+std::pair<std::string, std::vector<float>> gltfAttribute(
+  const Atlas& atlas, size_t a, const std::vector<float>& values)
+{
+  const AtlasAttribute& attribute = atlas.attributes[a];
+  if (attribute.name == kAtlasTextureCoordinates && attribute.components == 2)
+  {
+    return { "TEXCOORD_0", gltfTexCoords(values) };
+  }
+  if (attribute.name == kColors && (attribute.components == 3 || attribute.components == 4))
+  {
+    return { "COLOR_0", gltfColors(values) };
+  }
+  // glTF has no attribute of more components.
+  return { attribute.components <= 4 ? "_" + attribute.name : "", values };
+}
+
 /// LOD `k`'s mesh (one primitive) into `model`; fills its counts.
 void addMesh(tinygltf::Model& model, const Atlas& atlas, GltfLod& lod, size_t k)
 {
@@ -235,11 +276,10 @@ void addMesh(tinygltf::Model& model, const Atlas& atlas, GltfLod& lod, size_t k)
   p.attributes["NORMAL"] = addFloats(model, unitNormals(rebuilt.attributes[0]), 3, false);
   for (size_t a = 2; a < atlas.attributes.size(); ++a)
   {
-    const int comps = atlas.attributes[a].components;
-    if (comps >= 1 && comps <= 4) // glTF has no attribute of more components
+    const auto [semantic, values] = gltfAttribute(atlas, a, rebuilt.attributes[a - 1]);
+    if (!semantic.empty())
     {
-      p.attributes["_" + atlas.attributes[a].name] =
-        addFloats(model, rebuilt.attributes[a - 1], comps, false);
+      p.attributes[semantic] = addFloats(model, values, atlas.attributes[a].components, false);
     }
   }
   p.indices = addIndices(model, m.triangles, m.numPoints());
@@ -316,6 +356,52 @@ void addNodes(
   model.defaultScene = 0;
 }
 
+/// The atlas's base-colour texture, when it has one and the coordinates to look it up.
+const AtlasTexture* baseColorTexture(const Atlas& atlas)
+{
+  for (const AtlasTexture& texture : atlas.textures)
+  {
+    if (texture.name == kAtlasBaseColorTexture &&
+      findAttribute(atlas, kAtlasTextureCoordinates) >= 0)
+    {
+      return &texture;
+    }
+  }
+  return nullptr;
+}
+
+/// The one material: the base-colour texture as an embedded PNG (repeated, mipmapped: glTF's
+/// defaults spelled out) on white, or grey without one.
+void addMaterial(tinygltf::Model& model, const Atlas& atlas)
+{
+  tinygltf::Material material;
+  material.name = "TriChart";
+  material.pbrMetallicRoughness.baseColorFactor = { 0.8, 0.8, 0.8, 1.0 };
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 0.6;
+  if (const AtlasTexture* texture = baseColorTexture(atlas))
+  {
+    const std::string png = encodePng(texture->width, texture->height, texture->rgba);
+    tinygltf::Image image;
+    image.name = texture->name;
+    image.mimeType = "image/png";
+    image.bufferView = addView(model, png.data(), png.size(), 0);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture gltfTexture;
+    gltfTexture.source = 0;
+    gltfTexture.sampler = 0;
+    model.textures.push_back(gltfTexture);
+    material.pbrMetallicRoughness.baseColorTexture.index = 0;
+    material.pbrMetallicRoughness.baseColorFactor = { 1.0, 1.0, 1.0, 1.0 };
+  }
+  model.materials.push_back(material);
+}
+
 tinygltf::Model makeModel(
   const Atlas& atlas, std::vector<GltfLod>& lods, GltfLayout layout, const Progress& progress)
 {
@@ -323,12 +409,7 @@ tinygltf::Model makeModel(
   model.asset.version = "2.0";
   model.asset.generator = "TriChart";
   model.buffers.resize(1);
-  tinygltf::Material grey;
-  grey.name = "TriChart";
-  grey.pbrMetallicRoughness.baseColorFactor = { 0.8, 0.8, 0.8, 1.0 };
-  grey.pbrMetallicRoughness.metallicFactor = 0.0;
-  grey.pbrMetallicRoughness.roughnessFactor = 0.6;
-  model.materials.push_back(grey);
+  addMaterial(model, atlas);
   for (size_t k = 0; k < lods.size(); ++k)
   {
     addMesh(model, atlas, lods[k], k);

@@ -29,7 +29,13 @@
 /// Attributes other than Position: the atlas may keep one-sided values along a feature side
 /// (validateAtlas compares positions only, so normals may differ there). A welded point carries
 /// the value of its source sample (below); the value a chart's shader reads for its own copy is
-/// atlasSample(atlas, c, a, n, stitchedGridPoint(...)), the same everywhere else.
+/// atlasSample(atlas, c, a, n, stitchedGridPoint(...)), the same everywhere else. Where a chart's
+/// own values of an attribute after Position and Normal differ from its welded point's (beyond
+/// float noise: 1e-5 of the value, or of 1), as on a texture seam whose sides the atlas samples
+/// per chart, the point splits: that chart's vertex goes to a copy of the point carrying the
+/// chart's own values (one copy per distinct value, shared by the charts that agree), appended
+/// after the points below as 4. seam copies, in chart order. The mesh is then closed in its
+/// positions, not its point ids, along such seams.
 ///
 /// Output points, in this order (each identified topologically, never by comparing positions):
 ///   1. base vertices: one per distinct AtlasChart::cornerVertex, ascending by that id;

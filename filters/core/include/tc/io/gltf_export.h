@@ -21,14 +21,17 @@
 ///   Unreal's importers): one scene node "TriChart" whose children are every LOD's node, named
 ///   "TriChart_LOD<k>"; a viewer shows them all, on top of each other.
 /// Each mesh has one indexed triangle
-/// primitive (POSITION with its min and max, NORMAL, and every user attribute of the atlas as
-/// "_<name>", all float32; indices uint16 when they fit, else uint32) and one grey
-/// metallic-roughness material. With MsftLod, LOD 0's node extras hold "MSFT_screencoverage",
-/// one value per LOD: LOD k is meant for a screen coverage at or above value k, where the coverage
-/// is the fraction of the viewport height that the bounding-box diagonal covers; value k is where
-/// LOD k + 1's error would grow to errorPixels pixels in a viewport viewportHeight pixels tall (0
-/// for the coarsest, which stays drawn). Every node's extras also hold its LOD's "error" (input
-/// units), "errorFraction" (of the diagonal) and "triangles".
+/// primitive (POSITION with its min and max, NORMAL, the input's look as TEXCOORD_0 (v flipped:
+/// glTF puts v = 0 at the image's top) and COLOR_0 (Colors / 255), every other user attribute of
+/// the atlas as "_<name>", all float32; indices uint16 when they fit, else uint32) and one
+/// metallic-roughness material: the atlas's base-colour texture as an embedded PNG (repeated,
+/// linear with mipmaps) on white, or grey without one. Points on a texture seam are split as
+/// rebuildMesh splits them, so each side keeps its own coordinates. With MsftLod, LOD 0's node
+/// extras hold "MSFT_screencoverage", one value per LOD: LOD k is meant for a screen coverage at or
+/// above value k, where the coverage is the fraction of the viewport height that the bounding-box
+/// diagonal covers; value k is where LOD k + 1's error would grow to errorPixels pixels in a
+/// viewport viewportHeight pixels tall (0 for the coarsest, which stays drawn). Every node's extras
+/// also hold its LOD's "error" (input units), "errorFraction" (of the diagonal) and "triangles".
 #pragma once
 
 #include "tc/common/progress.h"
