@@ -33,6 +33,7 @@
 #include <vtkSphereSource.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -247,6 +248,40 @@ void tcStageView::HideAtlasPicture()
   }
 }
 
+namespace
+{
+/// The colour choice that draws the surface's base-colour texture.
+const char* const kTextureChoice = "Texture";
+
+/// The base-colour texture `surface` carries (the reader's field arrays, which every stage and
+/// the rebuilt mesh keep) and the coordinates to draw it with; null when it has not both.
+vtkSmartPointer<vtkTexture> SurfaceTexture(vtkPolyData* surface)
+{
+  vtkFieldData* fd = surface ? surface->GetFieldData() : nullptr;
+  vtkDataArray* rgba = fd ? fd->GetArray(tc::kBaseColorTexture) : nullptr;
+  vtkDataArray* size = fd ? fd->GetArray(tc::kBaseColorTextureSize) : nullptr;
+  vtkDataArray* uv = surface ? surface->GetPointData()->GetArray(tc::kTextureCoordinates) : nullptr;
+  if (!rgba || !size || !uv || rgba->GetNumberOfComponents() != 4 ||
+    size->GetNumberOfComponents() != 2 ||
+    rgba->GetNumberOfTuples() !=
+      static_cast<vtkIdType>(size->GetComponent(0, 0)) *
+        static_cast<vtkIdType>(size->GetComponent(0, 1)))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(
+    static_cast<int>(size->GetComponent(0, 0)), static_cast<int>(size->GetComponent(0, 1)), 1);
+  image->GetPointData()->SetScalars(rgba);
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  texture->MipmapOn();
+  texture->RepeatOn();
+  return texture;
+}
+} // namespace
+
 QStringList tcStageView::ColorChoices() const
 {
   QStringList choices("Solid");
@@ -254,6 +289,10 @@ QStringList tcStageView::ColorChoices() const
   if (!surface)
   {
     return choices;
+  }
+  if (SurfaceTexture(surface))
+  {
+    choices << kTextureChoice;
   }
   for (int i = 0; i < surface->GetPointData()->GetNumberOfArrays(); ++i)
   {
@@ -278,6 +317,10 @@ QString tcStageView::DefaultColor(int stage, const QStringList& choices, const Q
 {
   const QString clusters = QString("cell:") + tc::kClusterId;
   const QString charts = QString("cell:") + tc::kChartId;
+  if (stage == tcStage::Input && choices.contains(kTextureChoice))
+  {
+    return kTextureChoice;
+  }
   if (stage == tcStage::Base)
   {
     return tc::kBaseFaceId;
@@ -312,6 +355,21 @@ void tcStageView::ColorBy(const QString& name)
   vtkDataArray* values = !this->Shown ? nullptr
     : cell ? this->Shown->GetCellData()->GetArray(arrayName.toStdString().c_str())
            : this->Shown->GetPointData()->GetArray(arrayName.toStdString().c_str());
+  const vtkSmartPointer<vtkTexture> texture =
+    name == kTextureChoice ? SurfaceTexture(this->Shown) : nullptr;
+  this->SurfaceActor->SetTexture(texture);
+  if (texture)
+  {
+    // The texture's colours as they are: white under it, as vtkTexture multiplies.
+    for (vtkPolyData* surface : { this->Shown.Get(), this->SurfaceMapper->GetInput() })
+    {
+      surface->GetPointData()->SetActiveTCoords(tc::kTextureCoordinates);
+    }
+    this->SurfaceMapper->ScalarVisibilityOff();
+    this->SurfaceActor->GetProperty()->SetColor(1.0, 1.0, 1.0);
+    this->Legend->VisibilityOff();
+    return;
+  }
   if (!values)
   {
     this->SurfaceMapper->ScalarVisibilityOff();

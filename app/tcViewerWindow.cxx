@@ -617,6 +617,11 @@ void tcViewerWindow::FillArrayChoices()
 
 void tcViewerWindow::SetColorArray(const QString& name)
 {
+  // The LOD view's own colour modes: its texture for "Texture" (the stages' choice).
+  if (this->CurrentStage == tcStage::LOD && name == "Texture")
+  {
+    this->ParameterPanel(tcStage::LOD)->Field<QComboBox>("Colour by")->setCurrentText("texture");
+  }
   {
     const QSignalBlocker block(this->ColorBy);
     const int index = this->ColorBy->findText(name);

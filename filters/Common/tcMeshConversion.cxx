@@ -342,6 +342,22 @@ bool ReadOptionalIntArray(vtkDataSetAttributes* attributes, const char* name, vt
 template TRICHARTCOMMON_EXPORT bool ReadOptionalIntArray<uint8_t>(
   vtkDataSetAttributes*, const char*, vtkIdType, std::vector<uint8_t>&, std::string&);
 
+void AddBaseColorTextureFields(
+  vtkFieldData* fd, vtkUnsignedCharArray* rgba, int width, int height, const std::string& name)
+{
+  rgba->SetName(tc::kBaseColorTexture);
+  fd->AddArray(rgba);
+  vtkNew<vtkIntArray> size;
+  size->SetName(tc::kBaseColorTextureSize);
+  size->SetNumberOfComponents(2);
+  size->InsertNextTuple2(width, height);
+  fd->AddArray(size);
+  vtkNew<vtkStringArray> label;
+  label->SetName(tc::kBaseColorTextureName);
+  label->InsertNextValue(name);
+  fd->AddArray(label);
+}
+
 void SetTextField(vtkFieldData* fd, const char* name, const std::string& text)
 {
   auto lines = vtkSmartPointer<vtkStringArray>::New();

@@ -27,6 +27,7 @@ class vtkCellArray;
 class vtkDataArray;
 class vtkDataSetAttributes;
 class vtkFieldData;
+class vtkUnsignedCharArray;
 class vtkPolyData;
 
 namespace tcvtk
@@ -95,6 +96,12 @@ TRICHARTCOMMON_EXPORT void SetTextField(
 
 /// Reads back a text field written by SetTextField ("" when absent).
 TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);
+
+/// Adds a base-colour texture as tcMeshReader gives it: the field arrays BaseColorTexture
+/// (`rgba`, 4 unsigned chars per texel, width x height tuples, row 0 the bottom),
+/// BaseColorTextureSize (one tuple: width, height) and BaseColorTextureName (one value: `name`).
+TRICHARTCOMMON_EXPORT void AddBaseColorTextureFields(
+  vtkFieldData* fd, vtkUnsignedCharArray* rgba, int width, int height, const std::string& name);
 
 /// Adds (or replaces) the int field array `name` of #values / components tuples to `fd`.
 TRICHARTCOMMON_EXPORT void AddIntField(

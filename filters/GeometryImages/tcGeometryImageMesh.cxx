@@ -16,6 +16,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
 
 vtkStandardNewMacro(tcGeometryImageMesh);
 
@@ -57,6 +58,26 @@ void AddAtlasAttributes(const tc::Atlas& atlas, const tc::RebuiltMesh& rebuilt, 
     {
       pd->SetNormals(array);
     }
+  }
+}
+/// The atlas's base-colour texture as the reader's field arrays, and its coordinates as the
+/// active texture coordinates, so that the rebuilt mesh is textured as the input was.
+void AddBaseColorTexture(const tc::Atlas& atlas, vtkPolyData* output)
+{
+  vtkPointData* pd = output->GetPointData();
+  for (const tc::AtlasTexture& texture : atlas.textures)
+  {
+    if (texture.name != tc::kAtlasBaseColorTexture || !pd->GetArray(tc::kTextureCoordinates))
+    {
+      continue;
+    }
+    vtkNew<vtkUnsignedCharArray> rgba;
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(static_cast<vtkIdType>(texture.width) * texture.height);
+    std::copy(texture.rgba.begin(), texture.rgba.end(), rgba->GetPointer(0));
+    tcvtk::AddBaseColorTextureFields(
+      output->GetFieldData(), rgba, texture.width, texture.height, texture.source);
+    pd->SetActiveTCoords(tc::kTextureCoordinates);
   }
 }
 } // namespace
@@ -123,6 +144,7 @@ int tcGeometryImageMesh::RequestData(
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kChartId, rebuilt.chartId));
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kLevel, rebuilt.level));
   output->GetCellData()->SetActiveScalars(tc::kChartId);
+  AddBaseColorTexture(atlas, output);
   return 1;
 }
 

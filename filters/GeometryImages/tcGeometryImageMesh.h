@@ -7,12 +7,16 @@
  * Chart c is drawn as its grid of 2^d + 1 samples per side at its level d; on a side whose
  * neighbour is coarser, each sample snaps to the neighbour's samples (t - t mod 2^(d - m)), so
  * the finer side follows the coarser one exactly and the triangles it collapses are dropped.
- * Shared samples become one point, so the result is a closed mesh when the atlas came from one.
- * This is the CPU reference of the GPU renderer: it draws the same vertices.
+ * Shared samples become one point, so the result is a closed mesh when the atlas came from one;
+ * only on a seam of a resampled array (a texture seam) a point comes once per side, each with
+ * its chart's values. This is the CPU reference of the GPU renderer: it draws the same vertices.
  *
  * Input: an atlas (tcGeometryImages or tcAtlasReader). Output: the mesh with cell arrays
  * ChartId and Level, point array Normals and every further atlas attribute, and point array
- * SampleChart (chart, i, j of the sample each point was read from).
+ * SampleChart (chart, i, j of the sample each point was read from). With a base-colour texture
+ * in the atlas, TextureCoordinates are the active texture coordinates and the texture is the
+ * field arrays BaseColorTexture, BaseColorTextureSize and BaseColorTextureName, as tcMeshReader
+ * gives them.
  */
 #ifndef tcGeometryImageMesh_h
 #define tcGeometryImageMesh_h

@@ -146,7 +146,8 @@ std::vector<std::string> AddTexture(vtkPolyData* mesh, const tc::BaseColorTextur
     const tcvtk::DecodedTexture decoded = tcvtk::DecodeTexture(texture);
     if (decoded.rgba)
     {
-      tcvtk::AddTextureFields(mesh->GetFieldData(), decoded, texture.name);
+      tcvtk::AddBaseColorTextureFields(
+        mesh->GetFieldData(), decoded.rgba, decoded.width, decoded.height, texture.name);
       notes.push_back("texture " + texture.name + " " + std::to_string(decoded.width) + "x" +
         std::to_string(decoded.height) + " (field array " + tc::kBaseColorTexture + ")");
       if (!decoded.warning.empty())

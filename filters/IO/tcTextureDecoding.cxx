@@ -146,18 +146,4 @@ DecodedTexture DecodeTexture(const tc::BaseColorTexture& texture)
   return out;
 }
 
-void AddTextureFields(vtkFieldData* fd, const DecodedTexture& texture, const std::string& name)
-{
-  texture.rgba->SetName(tc::kBaseColorTexture);
-  fd->AddArray(texture.rgba);
-  vtkNew<vtkIntArray> size;
-  size->SetName(tc::kBaseColorTextureSize);
-  size->SetNumberOfComponents(2);
-  size->InsertNextTuple2(texture.width, texture.height);
-  fd->AddArray(size);
-  vtkNew<vtkStringArray> label;
-  label->SetName(tc::kBaseColorTextureName);
-  label->InsertNextValue(name);
-  fd->AddArray(label);
-}
 } // namespace tcvtk

@@ -33,9 +33,6 @@ struct DecodedTexture
 /// texels give an error, never a crash.
 DecodedTexture DecodeTexture(const tc::BaseColorTexture& texture);
 
-/// Adds the field arrays BaseColorTexture (RGBA, width x height tuples), BaseColorTextureSize
-/// (one tuple: width, height) and BaseColorTextureName (one value: `name`) to `fd`.
-void AddTextureFields(vtkFieldData* fd, const DecodedTexture& texture, const std::string& name);
 } // namespace tcvtk
 
 #endif

@@ -351,3 +351,32 @@ def test_iso_view_screenshots_of_shared_meshes(tmp_path, mesh, stage):
 def test_bad_camera_options_are_refused(option, value):
     r = viewer(BUNNY, option, value, "--screenshot", "x.png")
     assert r.returncode == 2 and option in r.stderr, r.stderr
+
+
+def test_a_textured_mesh_is_shown_textured(tmp_path):
+    # The input stage of a textured mesh opens coloured by its texture, and --array Texture
+    # colours the reconstruction and the LOD view by the atlas's copy of it: the checker's
+    # saturated hues show (an untextured sphere is grey).
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGReader
+
+    sphere = DATA / "meshes" / "textured_sphere.glb"
+    r = viewer(sphere, "--stage", "input", "--screenshot", tmp_path / "input.png")
+    assert r.returncode == 0, r.stderr
+    r = viewer(sphere, "--stage", "reconstruction,lod", "--array", "Texture", "--screenshot",
+               tmp_path / "{stage}.png")
+    assert r.returncode == 0, r.stderr
+    for name in ("input", "reconstruction", "lod"):
+        reader = vtkPNGReader()
+        reader.SetFileName(str(tmp_path / f"{name}.png"))
+        reader.Update()
+        rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+        # Saturated pixels by the channels above half their brightest: the front of the sphere
+        # shows the checker's cyan, blue and magenta columns.
+        brightest = rgb.max(axis=1)
+        saturated = brightest - rgb.min(axis=1) > 80
+        high = rgb > brightest[:, None] // 2
+        for hue in ((0, 1, 1), (0, 0, 1), (1, 0, 1)):
+            count = int((saturated & (high == numpy.array(hue, bool)).all(axis=1)).sum())
+            assert count > 2000, (name, hue, count)
