@@ -72,6 +72,7 @@ vec3 tcLabelColor(int label)
 // tcvtk::lod::PackTexels' r * 65536 + g * 256 + b (0 .. 255 each) as a colour.
 vec3 tcUnpackRgb(float code)
 {
-  int rgb = int(code + 0.5);
+  // The code is an exact integer; adding 0.5 first would round odd codes above 2^23 up.
+  int rgb = int(code);
   return vec3(float((rgb >> 16) & 255), float((rgb >> 8) & 255), float(rgb & 255)) / 255.0;
 }

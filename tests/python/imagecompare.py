@@ -40,6 +40,33 @@ def compare_with_baseline(candidate, baseline, threshold=0.05):
     return True, error
 
 
+def _rgb(path):
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    r = vtkPNGReader()
+    r.SetFileName(str(path))
+    r.Update()
+    dims = r.GetOutput().GetDimensions()
+    pixels = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())
+    return numpy.asarray(pixels.reshape(dims[1], dims[0], -1)[:, :, :3], dtype=int)
+
+
+def differing_inner_pixels(candidate, baseline, level, margin=2):
+    """differing_pixels over the pixels that both PNGs cover (not black) together with every
+    pixel within `margin` of them: a wrong colour inside a surface, not a silhouette that moved
+    by a pixel."""
+    import numpy
+
+    a, b = _rgb(candidate), _rgb(baseline)
+    covered = (a.max(axis=2) > 0) & (b.max(axis=2) > 0)
+    inner = covered.copy()
+    for dy in range(-margin, margin + 1):
+        for dx in range(-margin, margin + 1):
+            inner &= numpy.roll(numpy.roll(covered, dy, axis=0), dx, axis=1)
+    return int(((numpy.abs(a - b).max(axis=2) > level) & inner).sum())
+
+
 def differing_pixels(candidate, baseline, level):
     """Pixels whose red, green or blue differs by more than `level` (of 255) between two PNGs
     of the same size: stricter than vtkImageDifference, whose threshold hides shading changes

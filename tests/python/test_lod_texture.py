@@ -10,7 +10,7 @@ import pytest
 import trichart
 from trichart import tcArrayNames
 
-from imagecompare import differing_pixels
+from imagecompare import differing_inner_pixels, differing_pixels
 
 SIZE = (320, 320)
 
@@ -194,3 +194,66 @@ def test_gltf_export_carries_the_texture_and_its_coordinates(sphere, tmp_path):
     ours = vtk_to_numpy(rebuilt.GetPointData().GetArray(tcArrayNames.TextureCoordinates()))
     theirs = vtk_to_numpy(read.GetPointData().GetArray(tcArrayNames.TextureCoordinates()))
     assert numpy.abs(ours - theirs).max() < 1e-6
+
+
+def test_vertex_colours_reach_the_renderer_and_the_export(testing_data, tmp_path):
+    # The sphere with a colour per point from its position (as a PLY's red, green, blue
+    # properties read): the atlas resamples Colors, ColorByVertexColors draws them as VTK draws
+    # the input's colours, and the export writes them as COLOR_0.
+    import json
+    import struct
+
+    import numpy
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkRenderingCore import vtkPolyDataMapper
+
+    mesh = trichart.read_mesh(testing_data / "meshes" / "textured_sphere.glb")
+    points = vtk_to_numpy(mesh.GetPoints().GetData())
+    rgba = numpy.empty((len(points), 4), numpy.uint8)
+    rgba[:, :3] = numpy.clip(numpy.round((points + 1) * 127.5), 0, 255)
+    rgba[:, 3] = 255
+    colors = numpy_to_vtk(rgba, deep=True)
+    colors.SetName(tcArrayNames.Colors())
+    mesh.GetPointData().AddArray(colors)
+    mesh.GetPointData().RemoveArray(tcArrayNames.TextureCoordinates())
+    clean, _ = trichart.prepare(mesh)
+    surface, _ = trichart.curvature(clean)
+    clusters, _ = trichart.cluster(surface)
+    features, _, _ = trichart.refine_features(clusters)
+    _, parameterized = trichart.base_complex(features)
+    patches, _ = trichart.trace_paths(parameterized)
+    atlas = trichart.geometry_images(patches)
+    assert atlas.GetNumberOfBlocks() == 2  # no texture to carry
+    temp = pathlib.Path(os.environ.get("TRICHART_TEMP", tmp_path))
+    reference = vtkPolyDataMapper()
+    reference.SetInputData(mesh)
+    reference.SetScalarModeToUsePointFieldData()
+    reference.SelectColorArray(tcArrayNames.Colors())
+    reference.SetColorModeToDirectScalars()
+    reference.ScalarVisibilityOn()
+    expected = render(reference, None, temp / "colors_vtk.png", (1, 0.5, 0.7))
+    lod = trichart.tcLODMapper()
+    lod.SetInputData(atlas)
+    lod.SetFixedLevel(-1)
+    lod.SetColorMode(trichart.tcLODMapper.ColorByVertexColors)
+    actual = render(lod, None, temp / "colors_lod.png", (1, 0.5, 0.7))
+    # Smooth colours: the two pictures agree within a few levels inside the sphere (one wrong
+    # vertex colour shows as a streak of tens of pixels), and nearly everywhere at its edge.
+    assert differing_inner_pixels(actual, expected, 12) < 10
+    assert differing_pixels(actual, expected, 12) < 0.01 * SIZE[0] * SIZE[1]
+    lod.SetColorMode(trichart.tcLODMapper.ColorByActor)
+    plain = render(lod, None, temp / "colors_plain.png", (1, 0.5, 0.7))
+    assert differing_pixels(plain, expected, 12) > 0.1 * SIZE[0] * SIZE[1]
+
+    out = tmp_path / "colors.glb"
+    trichart.export_gltf(atlas, out)
+    data = out.read_bytes()
+    gltf = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+    primitive = gltf["meshes"][0]["primitives"][0]
+    assert "COLOR_0" in primitive["attributes"] and "TEXCOORD_0" not in primitive["attributes"]
+    assert "images" not in gltf
+    read = trichart.read_mesh(out)
+    back = vtk_to_numpy(read.GetPointData().GetArray(tcArrayNames.Colors())).astype(int)
+    read_points = vtk_to_numpy(read.GetPoints().GetData())
+    # The resampled colours still follow the position rule within a level or two.
+    assert numpy.abs(back[:, :3] - (read_points + 1) * 127.5).max() < 3
