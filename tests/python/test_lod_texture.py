@@ -45,11 +45,27 @@ def input_texture(mesh):
     return texture
 
 
+_WINDOW = []
+
+
+def window():
+    """One off-screen window for every picture of the module: each window is an X connection,
+    and opening one after another can fail under Xvfb."""
+    from vtkmodules.vtkRenderingCore import vtkRenderWindow
+
+    if not _WINDOW:
+        w = vtkRenderWindow()
+        w.SetOffScreenRendering(1)
+        w.SetMultiSamples(0)
+        w.SetSize(*SIZE)
+        _WINDOW.append(w)
+    return _WINDOW[0]
+
+
 def render(mapper, texture, path, direction):
     """`mapper` unlit (the pure surface colour) from `direction`, to the PNG `path`."""
     from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
-                                             vtkWindowToImageFilter)
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkWindowToImageFilter
 
     actor = vtkActor()
     actor.SetMapper(mapper)
@@ -66,14 +82,14 @@ def render(mapper, texture, path, direction):
     camera.SetViewUp(0, 1, 0)
     camera.SetViewAngle(40)
     renderer.ResetCameraClippingRange(-1, 1, -1, 1, -1, 1)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(*SIZE)
-    window.AddRenderer(renderer)
-    window.Render()
+    shown = window()
+    previous = shown.GetRenderers().GetFirstRenderer()
+    if previous is not None:
+        shown.RemoveRenderer(previous)
+    shown.AddRenderer(renderer)
+    shown.Render()
     grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
+    grab.SetInput(shown)
     grab.Update()
     writer = vtkPNGWriter()
     writer.SetFileName(str(path))
