@@ -28,6 +28,8 @@ struct ViewerOptions
   QString ArrayName;
   bool SaveAtlas = false;
   QString AtlasPath;
+  bool ExportGltf = false;
+  QString GltfPath;
   int Level = -1;
   int Instances = 1;
   tcCameraView Camera;
@@ -58,6 +60,10 @@ void AddOptions(QCommandLineParser& parser, const QString& stageList)
   parser.addOption(QCommandLineOption("save-atlas",
     "Write the atlas of the last file (built, or the one opened) as .exr, as File > Save atlas "
     "does.",
+    "file"));
+  parser.addOption(QCommandLineOption("export-gltf",
+    "Write the LOD chain of the last file's atlas as glTF (.glb or .gltf), as File > Export "
+    "LOD chain as glTF does.",
     "file"));
   parser.addOption(QCommandLineOption("view",
     "Look from this side: " + tcCameraView::Directions().join(", ") +
@@ -176,6 +182,8 @@ bool ReadOptions(const QApplication& app, ViewerOptions& options)
   options.ArrayName = parser.value("array");
   options.SaveAtlas = parser.isSet("save-atlas");
   options.AtlasPath = parser.value("save-atlas");
+  options.ExportGltf = parser.isSet("export-gltf");
+  options.GltfPath = parser.value("export-gltf");
   options.Files = parser.positionalArguments();
   return true;
 }
@@ -241,14 +249,15 @@ int main(int argc, char* argv[])
   window.SetReconstructionLevel(options.Level);
   window.SetInstances(options.Instances);
   window.SetCameraView(options.Camera);
-  const bool batch = options.Screenshot || options.SaveAtlas;
+  const bool batch = options.Screenshot || options.SaveAtlas || options.ExportGltf;
   window.SetBatchMode(batch);
   RouteLogs(batch);
   window.show();
   QApplication::processEvents();
   if (batch && options.Files.isEmpty())
   {
-    std::cerr << "trichart-viewer: --screenshot and --save-atlas need a mesh or atlas file\n";
+    std::cerr << "trichart-viewer: --screenshot, --save-atlas and --export-gltf need a mesh or "
+                 "atlas file\n";
     return 2;
   }
 
@@ -277,6 +286,10 @@ int main(int argc, char* argv[])
   if (opened && options.SaveAtlas)
   {
     ok = window.SaveAtlas(options.AtlasPath) && ok;
+  }
+  if (opened && options.ExportGltf)
+  {
+    ok = window.ExportGltf(options.GltfPath) && ok;
   }
   return ok ? 0 : 1;
 }

@@ -6,10 +6,12 @@
 #include "tcBaseComplex.h"
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
+#include "tcGLTFWriter.h"
 #include "tcGeometryImageMesh.h"
 #include "tcGeometryImages.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
+#include "tcMeshWriter.h"
 #include "tcPathTracing.h"
 #include "tcSpectralClustering.h"
 #include "tcStage.h"
@@ -70,7 +72,8 @@ std::vector<vtkAlgorithm*> tcStagePipeline::Filters() const
 {
   return { this->Reader, this->Preparation, this->Curvature, this->Clustering, this->Refinement,
     this->BaseComplex, this->PathTracing, this->GeometryImages, this->AtlasReader, this->AtlasMesh,
-    this->Reconstruction, this->Subdivision, this->Distance, this->Writer };
+    this->Reconstruction, this->Subdivision, this->Distance, this->Writer, this->GltfWriter,
+    this->MeshWriter };
 }
 
 bool tcStagePipeline::IsAtlasFile(const std::string& path)
@@ -239,6 +242,33 @@ vtkAlgorithm* tcStagePipeline::AtlasWriterFor(const std::string& path)
 bool tcStagePipeline::AtlasWritten() const
 {
   return this->Writer->GetErrorCode() == vtkErrorCode::NoError;
+}
+
+vtkAlgorithm* tcStagePipeline::GltfWriterFor(const std::string& path)
+{
+  this->GltfWriter->SetInputConnection(this->AtlasSource()->GetOutputPort());
+  this->GltfWriter->SetFileName(path.c_str());
+  this->GltfWriter->Modified();
+  return this->GltfWriter;
+}
+
+vtkAlgorithm* tcStagePipeline::MeshWriterFor(vtkPolyData* mesh, const std::string& path)
+{
+  this->MeshWriter->SetInputData(mesh);
+  this->MeshWriter->SetFileName(path.c_str());
+  this->MeshWriter->Modified();
+  return this->MeshWriter;
+}
+
+bool tcStagePipeline::MeshWritten() const
+{
+  return this->MeshWriter->GetErrorCode() == vtkErrorCode::NoError;
+}
+
+bool tcStagePipeline::GltfWritten() const
+{
+  return this->GltfWriter->GetErrorCode() == vtkErrorCode::NoError &&
+    this->GltfWriter->GetNumberOfLods() > 0;
 }
 
 void tcStagePipeline::OnProgress(vtkObject* caller, unsigned long, void*)

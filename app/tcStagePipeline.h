@@ -39,6 +39,8 @@
 
 class tcAtlasReader;
 class tcAtlasWriter;
+class tcGLTFWriter;
+class tcMeshWriter;
 class tcBaseComplex;
 class tcCurvature;
 class tcFeatureRefinement;
@@ -132,6 +134,16 @@ public:
   /// The last Run of AtlasWriterFor wrote its file.
   bool AtlasWritten() const;
 
+  /// The glTF writer (tcGLTFWriter at its defaults: the LOD chain by error, MSFT_lod), like
+  /// AtlasWriterFor; GltfWritten says whether its last Run wrote the file.
+  vtkAlgorithm* GltfWriterFor(const std::string& path);
+  bool GltfWritten() const;
+
+  /// The mesh writer (tcMeshWriter: the format by the extension) of `mesh` to `path`, like
+  /// AtlasWriterFor; MeshWritten says whether its last Run wrote the file.
+  vtkAlgorithm* MeshWriterFor(vtkPolyData* mesh, const std::string& path);
+  bool MeshWritten() const;
+
   ///@{
   /// The filters whose parameters a face sets and whose reports it shows.
   tcMeshReader* GetReader() const { return this->Reader; }
@@ -170,6 +182,8 @@ private:
   vtkNew<tcSurfaceDistance> Distance;
   vtkNew<vtkExtractEdges> RebuiltEdges;
   vtkNew<tcAtlasWriter> Writer;
+  vtkNew<tcGLTFWriter> GltfWriter;
+  vtkNew<tcMeshWriter> MeshWriter;
 
   std::function<void(const char*, double)> Progress;
   std::string Error;

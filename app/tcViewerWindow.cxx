@@ -36,10 +36,10 @@
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include "tcMeshWriter.h"
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkPolyData.h>
 #include <vtkRenderer.h>
-#include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
 #include <iostream>
@@ -301,8 +301,10 @@ void tcViewerWindow::BuildFileMenu()
   connect(open, &QAction::triggered, this, &tcViewerWindow::OpenDialog);
   this->RecentMenu = file->addMenu("Open &Recent");
   this->UpdateRecentMenu();
-  QAction* exportStage = file->addAction("&Export stage as VTP...");
+  QAction* exportStage = file->addAction("&Export stage...");
   connect(exportStage, &QAction::triggered, this, &tcViewerWindow::ExportStage);
+  QAction* exportGltf = file->addAction("Export LOD chain as &glTF...");
+  connect(exportGltf, &QAction::triggered, this, &tcViewerWindow::ExportGltfDialog);
   QAction* saveAtlas = file->addAction("Save &atlas...");
   connect(saveAtlas, &QAction::triggered, this, &tcViewerWindow::SaveAtlasDialog);
   QAction* shot = file->addAction("Save &screenshot...");
@@ -342,18 +344,62 @@ void tcViewerWindow::ExportStage()
   {
     return;
   }
-  const QString path = QFileDialog::getSaveFileName(
-    this, "Export stage", QString(tcStage::Name(this->CurrentStage)) + ".vtp", "VTP (*.vtp)");
+  // The formats tcMeshWriter writes; the name's extension chooses one (as on the command line).
+  QStringList patterns;
+  for (const QString& extension : QString(tcMeshWriter::GetSupportedExtensions()).split(' '))
+  {
+    patterns << "*" + extension;
+  }
+  const QString path = QFileDialog::getSaveFileName(this, "Export stage",
+    QString(tcStage::Name(this->CurrentStage)) + ".vtp",
+    "Meshes (" + patterns.join(' ') + ");;All files (*)");
+  if (path.isEmpty())
+  {
+    return;
+  }
+  if (!tcMeshWriter::IsMeshFileName(path.toStdString().c_str()))
+  {
+    this->ReportError("Cannot write " + path + ": name the file with one of " +
+      QString(tcMeshWriter::GetSupportedExtensions()) + " (the format follows the extension)");
+    return;
+  }
+  if (this->Run(this->Pipeline->MeshWriterFor(shown, path.toStdString())) &&
+    !this->Pipeline->MeshWritten())
+  {
+    this->ReportError("Cannot write " + path);
+  }
+}
+
+void tcViewerWindow::ExportGltfDialog()
+{
+  if (this->FileName.isEmpty())
+  {
+    this->ReportError("Open a mesh or an atlas first: there is no atlas to export.");
+    return;
+  }
+  const QString path = QFileDialog::getSaveFileName(this, "Export LOD chain as glTF",
+    QFileInfo(this->FileName).completeBaseName() + ".glb", "glTF (*.glb *.gltf)");
   if (!path.isEmpty())
   {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetInputData(shown);
-    writer->SetFileName(path.toStdString().c_str());
-    if (writer->Write() != 1)
-    {
-      this->ReportError("Cannot write " + path);
-    }
+    this->ExportGltf(path);
   }
+}
+
+bool tcViewerWindow::ExportGltf(const QString& path)
+{
+  this->PushParameters();
+  if (!this->Run(this->Pipeline->GltfWriterFor(path.toStdString())))
+  {
+    return false;
+  }
+  if (!this->Pipeline->GltfWritten())
+  {
+    this->Error = "Cannot write the glTF file " + path;
+    this->ReportError(this->Error);
+    return false;
+  }
+  this->statusBar()->showMessage("Exported the LOD chain as " + path, 5000);
+  return true;
 }
 
 void tcViewerWindow::SaveAtlasDialog()

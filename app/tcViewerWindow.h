@@ -72,6 +72,9 @@ public:
   /// Runs the pipeline up to the atlas (or takes the opened atlas) and writes it with
   /// tcAtlasWriter; false (with the error shown) on failure.
   bool SaveAtlas(const QString& path);
+  /// Exports the open file's atlas as a glTF LOD chain (.glb or .gltf), as File > Export LOD
+  /// chain as glTF does; false (and an error shown) when it fails.
+  bool ExportGltf(const QString& path);
 
   /// Sets the level of the reconstruction panel (-1: each chart's finest); Apply or the next
   /// stage shown uses it.
@@ -121,6 +124,7 @@ private:
   void OpenDialog();
   void ExportStage();
   void SaveAtlasDialog();
+  void ExportGltfDialog();
   void ScreenshotDialog();
   /// The parameter panel of `stage` (nullptr for a stage without parameters).
   tcParameterPanel* ParameterPanel(int stage) const;

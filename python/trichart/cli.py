@@ -123,15 +123,11 @@ def _input_triangles(mesh):
     return int((sides - 2).clip(min=0).sum())
 
 
-def _build_figures(args, result, seconds):
-    """Every figure the build summary prints, by name."""
-    from .pipeline import resident_memory
-
+def _build_figures(args, result, seconds, peak):
+    """Every figure the build summary prints, by name; `peak`: the build's peak memory."""
     surface = result["surface"]
     size = os.path.getsize(result["files"]["atlas"])
     triangles = _input_triangles(result["mesh"])
-    # VmHWM, not getrusage's ru_maxrss: that one keeps the peak of the process this one was
-    # forked from across exec (a test runner's, a shell's).
     return {"mesh": str(args.mesh), "points": surface.GetNumberOfPoints(),
             "triangles": surface.GetNumberOfCells(), "input_triangles": triangles,
             "feature_lines": result["feature_lines"].GetNumberOfCells(),
@@ -143,7 +139,7 @@ def _build_figures(args, result, seconds):
             "bytes_per_input_triangle": size / max(triangles, 1),
             "retried": result["retried"], "read": _scene_lines(result["mesh"]),
             "prepared": result["report"].splitlines(), "files": result["files"],
-            "memory": {"peak": resident_memory("VmHWM"), **result["memory"]}}
+            "memory": {"peak": peak, **result["memory"]}}
 
 
 def _print_build_summary(f):
@@ -172,7 +168,7 @@ def _print_build_summary(f):
 
 
 def cmd_build(args):
-    from .pipeline import build, set_max_threads
+    from .pipeline import build, resident_memory, set_max_threads
 
     set_max_threads(args.threads)
     bar = None if args.quiet else ProgressBar()
@@ -183,7 +179,11 @@ def cmd_build(args):
     finally:
         if bar:
             bar.close()
-    figures = _build_figures(args, result, time.perf_counter() - start)
+    # VmHWM (reset as the build starts), not getrusage's ru_maxrss: that one keeps the peak of
+    # the process this one was forked from across exec (a test runner's, a shell's). Taken
+    # before the figures, whose modules (numpy) are no part of the build.
+    peak = resident_memory("VmHWM")
+    figures = _build_figures(args, result, time.perf_counter() - start, peak)
     if args.json:
         print(json.dumps(figures, indent=2))
     else:

@@ -1,19 +1,12 @@
 """Chain the TriChart filters from Python, with errors as exceptions and progress callbacks."""
 import os
 import signal
-import tempfile
 import threading
 import time
 
-import numpy
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
-from vtkmodules.vtkIOGeometry import vtkOBJWriter, vtkSTLWriter
-from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
-from vtkmodules.vtkIOPLY import vtkPLYWriter
-from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures,
                TriChartGeometryImages, TriChartIO, TriChartPreparation)
@@ -187,6 +180,17 @@ def resident_memory(field="VmRSS"):
     except OSError:
         pass
     return 0
+
+
+def reset_peak_memory():
+    """Start VmHWM again from what the process holds now (Linux's /proc/self/clear_refs), so
+    that a later peak is that of the work since, not of what came before (imports, argument
+    defaults) and was freed; nothing where /proc does not allow it."""
+    try:
+        with open("/proc/self/clear_refs", "w") as refs:
+            refs.write("5")
+    except OSError:
+        pass
 
 
 def _output(algorithm, port=0):
@@ -409,81 +413,33 @@ def atlas_charts(atlas):
     return atlas.GetBlock(0)
 
 
-def _xml_writer():
-    writer = vtkXMLPolyDataWriter()
-    writer.SetDataModeToBinary()
-    return writer
-
-
-def _legacy_writer():
-    writer = vtkPolyDataWriter()
-    writer.SetFileTypeToBinary()
-    return writer
-
-
-def _ply_writer():
-    writer = vtkPLYWriter()
-    writer.SetFileTypeToBinary()
-    return writer
-
-
-def _stl_writer():
-    writer = vtkSTLWriter()
-    writer.SetFileTypeToBinary()
-    return writer
-
-
-# The mesh formats TriChart writes, by extension: VTK's writers, and OFF (below).
-_MESH_WRITERS = {".vtp": _xml_writer, ".vtk": _legacy_writer, ".ply": _ply_writer,
-                 ".obj": vtkOBJWriter, ".stl": _stl_writer, ".off": None}
-MESH_EXTENSIONS = tuple(_MESH_WRITERS)
+# The mesh formats TriChart writes, by extension: tcMeshWriter's.
+MESH_EXTENSIONS = tuple(TriChartIO.tcMeshWriter.GetSupportedExtensions().split())
 
 
 def check_mesh_file_name(path):
     """Raise TriChartError unless `path` names a mesh format TriChart writes."""
-    extension = os.path.splitext(str(path))[1].lower()
-    if extension not in _MESH_WRITERS:
+    if not TriChartIO.tcMeshWriter.IsMeshFileName(str(path)):
+        extension = os.path.splitext(str(path))[1].lower()
         raise TriChartError(
             f"cannot write '{path}': unknown extension '{extension}'; a mesh is written as "
             f"{', '.join(MESH_EXTENSIONS)} (an atlas as .exr: trichart build; an LOD chain as "
             f".glb or .gltf: trichart export)")
-    return extension
-
-
-def _write_off(mesh, path):
-    """ASCII OFF: VTK has no OFF writer; points in full float precision, triangles as given."""
-    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
-    polys = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    with open(path, "w", encoding="ascii") as out:
-        out.write(f"OFF\n{len(points)} {len(polys)} 0\n")
-        numpy.savetxt(out, points, fmt="%.9g")
-        numpy.savetxt(out, numpy.hstack([numpy.full((len(polys), 1), 3), polys]), fmt="%d")
-    return True
+    return os.path.splitext(str(path))[1].lower()
 
 
 def write_mesh(mesh, path):
-    """Write `mesh` in the format its extension names (MESH_EXTENSIONS; anything else is
-    refused); the file appears only when complete (temporary file, then rename)."""
-    extension = check_mesh_file_name(path)
+    """Write `mesh` with tcMeshWriter in the format its extension names (MESH_EXTENSIONS;
+    anything else, or polygons for STL and OFF, is refused with TriChartError); the file
+    appears only when complete (temporary file, then rename)."""
+    check_mesh_file_name(path)
     path = os.path.abspath(str(path))
-    if extension in (".stl", ".off") and mesh.GetPolys().GetMaxCellSize() > 3:
-        raise TriChartError(f"cannot write '{path}': {extension} takes triangles only")
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=extension, dir=os.path.dirname(path))
-    os.close(fd)
-    try:
-        if extension == ".off":
-            written = _write_off(mesh, tmp)
-        else:
-            writer = _MESH_WRITERS[extension]()
-            writer.SetFileName(tmp)
-            writer.SetInputData(mesh)
-            written = writer.Write() == 1
-        if not written:
-            raise TriChartError(f"cannot write '{path}' (disk full or not writable?)")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    writer = TriChartIO.tcMeshWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(mesh)
+    run(writer, "write")
+    if writer.GetErrorCode() != 0:
+        raise TriChartError(f"cannot write '{path}' (disk full or not writable?)")
     return path
 
 
@@ -633,6 +589,7 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     check_atlas_file_name(atlas_path)
     timed = _Stopwatch()
     start = resident_memory()
+    reset_peak_memory()
     mesh, estimate = _read_within(path, progress, timed, max_memory,
                         (geometry_options, base_options, cluster_options))
     stage_options = {"curvature": curvature_options or {}, "cluster": cluster_options or {},

@@ -380,3 +380,21 @@ def test_a_textured_mesh_is_shown_textured(tmp_path):
         for hue in ((0, 1, 1), (0, 0, 1), (1, 0, 1)):
             count = int((saturated & (high == numpy.array(hue, bool)).all(axis=1)).sum())
             assert count > 2000, (name, hue, count)
+
+
+def test_export_gltf_writes_the_lod_chain_of_the_open_mesh(tmp_path):
+    # As File > Export LOD chain as glTF: the textured sphere's chain, its texture embedded;
+    # a name that is not glTF is refused and nothing is written.
+    out = tmp_path / "sphere.glb"
+    r = viewer(DATA / "meshes" / "textured_sphere.glb", "--stage", "atlas", "--export-gltf", out)
+    assert r.returncode == 0, r.stderr
+    data = out.read_bytes()
+    assert data[:4] == b"glTF"
+    import json
+    import struct
+    gltf = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+    assert len(gltf["meshes"]) >= 2 and gltf["images"][0]["mimeType"] == "image/png"
+    bad = tmp_path / "sphere.obj"
+    r = viewer(DATA / "meshes" / "textured_sphere.glb", "--stage", "atlas", "--export-gltf", bad)
+    assert r.returncode != 0 and ".glb" in r.stderr, r.stderr
+    assert not bad.exists()

@@ -199,3 +199,29 @@ def test_vtk_warnings_reach_the_user_as_plain_lines(tmp_path):
     r = run("prepare", mesh, "-o", tmp_path / "out.vtp")
     assert "trichart: warning: tcMeshPreparation: The mesh has" in r.stderr, r.stderr
     assert "\x1b[" not in r.stderr and "0x" not in r.stderr and "WARN|" not in r.stderr, r.stderr
+
+
+def test_the_mesh_writer_refuses_what_it_does_not_write(testing_data, tmp_path):
+    # tcMeshWriter, which the command line and the viewer write meshes through: an unknown
+    # extension and polygons for STL or OFF are refused with the reason, and nothing is written;
+    # every extension it names is written, in any case.
+    from vtkmodules.vtkFiltersSources import vtkPlaneSource
+
+    mesh = trichart.read_mesh(testing_data / "meshes" / "cube.off")
+    quads = vtkPlaneSource()
+    quads.SetResolution(2, 2)
+    quads.Update()
+    for data, name, reason in ((mesh, "cube.xyz", ".vtp .vtk .ply .obj .stl .off"),
+                               (quads.GetOutput(), "quads.stl", "takes triangles only"),
+                               (quads.GetOutput(), "quads.off", "takes triangles only")):
+        writer = trichart.TriChartIO.tcMeshWriter()
+        writer.SetFileName(str(tmp_path / name))
+        writer.SetInputData(data)
+        with pytest.raises(trichart.TriChartError, match=reason):
+            trichart.pipeline.run(writer, "write")
+        assert writer.GetErrorCode() != 0, name
+    assert list(tmp_path.iterdir()) == []
+    for extension in trichart.MESH_EXTENSIONS:
+        trichart.write_mesh(mesh, tmp_path / f"cube{extension.upper()}")
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        f"cube{e.upper()}" for e in trichart.MESH_EXTENSIONS)

@@ -7,7 +7,7 @@
 #include "io/atlas_codes.h"
 #include "io/atlas_layout.h"
 #include "io/atlas_metadata.h"
-#include "io/temporary_file.h"
+#include "tc/io/temporary_file.h"
 
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"

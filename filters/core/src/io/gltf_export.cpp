@@ -7,7 +7,7 @@
 #include "tc/gim/geometry_image_mesh.h"
 #include "tc/io/png_write.h"
 
-#include "io/temporary_file.h"
+#include "tc/io/temporary_file.h"
 
 #include <tiny_gltf.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "io/temporary_file.h"
+#include "tc/io/temporary_file.h"
 
 #include "tc/common/errors.h"
 
@@ -17,11 +17,11 @@ namespace detail
 {
 namespace
 {
-/// Creates a new empty file `path`.tmp-XXXXXX beside `path` and opens it. Not mkstemp: that
+/// Creates a new empty file `path`.tmp-XXXXXX`suffix` beside `path` and opens it. Not mkstemp: that
 /// creates the file with mode 0600, and the atlas would keep it after the rename; open with
 /// O_EXCL and mode 0666 gives the mode the user's umask asks for, like any new file.
-std::FILE* createTemporary(
-  const std::string& path, const std::string& error, std::string& temporary)
+std::FILE* createTemporary(const std::string& path, const std::string& suffix,
+  const std::string& error, std::string& temporary)
 {
   static const char kLetters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
   std::random_device entropy;
@@ -33,6 +33,7 @@ std::FILE* createTemporary(
     {
       temporary += kLetters[random() % (sizeof(kLetters) - 1)];
     }
+    temporary += suffix;
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0)
     {
@@ -57,11 +58,12 @@ std::FILE* createTemporary(
 }
 } // namespace
 
-TemporaryFile::TemporaryFile(const std::string& target, const std::string& error)
+TemporaryFile::TemporaryFile(
+  const std::string& target, const std::string& error, const std::string& suffix)
   : Target(target)
   , Error(error)
 {
-  File = createTemporary(target, error, Path);
+  File = createTemporary(target, suffix, error, Path);
 }
 
 TemporaryFile::~TemporaryFile()

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file temporary_file.h
 /// A file written under a temporary name beside its target and renamed over it only when
-/// complete and on disk (internal to atlas_io.cpp): on any error or exception the temporary is
-/// removed and an existing target is left as it was.
+/// complete and on disk (the atlas, glTF and mesh writers): on any error or exception the
+/// temporary is removed and an existing target is left as it was. A writer that opens files by
+/// name itself (VTK's) finishes the empty temporary, writes to path(), then commits.
 #pragma once
 
 #include <cstdint>
@@ -16,11 +17,13 @@ namespace detail
 class TemporaryFile
 {
 public:
-  /// Creates the new empty file `target`.tmp-XXXXXX (6 random letters and digits) beside
+  /// Creates the new empty file `target`.tmp-XXXXXX`suffix` (6 random letters and digits) beside
   /// `target`, with the mode the user's umask gives a new file. `error` starts every message,
-  /// e.g. "cannot write atlas <target>".
+  /// e.g. "cannot write atlas <target>". A suffix keeps the extension for writers that add it
+  /// when it is missing (VTK's PLY writer).
   /// @throws InputError  when the folder is missing or not writable
-  TemporaryFile(const std::string& target, const std::string& error);
+  TemporaryFile(
+    const std::string& target, const std::string& error, const std::string& suffix = "");
   /// Closes the file and removes it unless commit() succeeded.
   ~TemporaryFile();
   TemporaryFile(const TemporaryFile&) = delete;
