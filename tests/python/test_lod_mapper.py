@@ -10,7 +10,12 @@ def atlas(bunny_stages):
     return bunny_stages["atlas"]
 
 
+_WINDOW = []
+
+
 def scene(atlas):
+    """A new mapper of `atlas` in a new renderer, in the module's one off-screen window: each
+    window is an X connection, and opening one after another can fail under Xvfb."""
     from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 
     mapper = trichart.tcLODMapper()
@@ -19,9 +24,14 @@ def scene(atlas):
     actor.SetMapper(mapper)
     renderer = vtkRenderer()
     renderer.AddActor(actor)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(320, 240)
+    if not _WINDOW:
+        _WINDOW.append(vtkRenderWindow())
+        _WINDOW[0].SetOffScreenRendering(1)
+        _WINDOW[0].SetSize(320, 240)
+    window = _WINDOW[0]
+    previous = window.GetRenderers().GetFirstRenderer()
+    if previous is not None:
+        window.RemoveRenderer(previous)
     window.AddRenderer(renderer)
     renderer.ResetCamera()
     return mapper, window

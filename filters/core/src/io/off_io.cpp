@@ -3,11 +3,10 @@
 
 #include "detail/number_parsing.h"
 #include "tc/common/errors.h"
+#include "tc/io/temporary_file.h"
 
-#include <atomic>
 #include <cerrno>
 #include <charconv>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -404,42 +403,15 @@ std::string offText(const TriMesh& mesh)
   return text;
 }
 
-/// Writes `text` to a temporary file beside `path` and renames it over `path`.
-void writeReplacing(const std::string& path, const std::string& text)
-{
-  // A unique name beside the target keeps the final rename on one file system (so it is atomic)
-  // and lets two writers of different files in one folder never collide.
-  static std::atomic<uint64_t> counter{ 0 };
-  const uint64_t stamp =
-    static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
-  const std::string temporary =
-    path + ".tmp" + std::to_string(stamp % 1000000007u) + "-" + std::to_string(counter++);
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file)
-  {
-    throw InputError("cannot write " + path + ": " + std::strerror(errno) +
-      " (does the folder exist and is it writable?)");
-  }
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed)
-  {
-    std::remove(temporary.c_str());
-    throw InputError("cannot write " + path + ": the write failed (disk full?)");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec)
-  {
-    std::remove(temporary.c_str());
-    throw InputError("cannot write " + path + ": " + ec.message());
-  }
-}
 } // namespace
 
 void writeOFF(const std::string& path, const TriMesh& mesh)
 {
   checkMesh(path, mesh);
-  writeReplacing(path, offText(mesh));
+  const std::string text = offText(mesh);
+  detail::TemporaryFile file(path, "cannot write " + path);
+  file.write(text.data(), text.size());
+  file.finish();
+  file.commit();
 }
 } // namespace tc
