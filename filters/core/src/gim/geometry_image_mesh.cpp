@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/gim/geometry_image_mesh.h"
 
+#include "tc/common/close_values.h"
 #include "tc/common/errors.h"
 #include "tc/common/parallel.h"
 
@@ -521,19 +522,12 @@ void readPointAttributes(
     },
     progress);
 }
+
 /// Whether values a and b of a seam attribute differ: by more than float noise (two charts
 /// resample one side independently), less than any real seam (u = 0 against 1).
 bool seamValuesDiffer(const float* a, const float* b, size_t comps)
 {
-  for (size_t x = 0; x < comps; ++x)
-  {
-    const float scale = std::max({ 1.0f, std::fabs(a[x]), std::fabs(b[x]) });
-    if (!(std::fabs(a[x] - b[x]) <= 1e-5f * scale))
-    {
-      return true;
-    }
-  }
-  return false;
+  return !closeValues(a, b, comps, 1e-5f);
 }
 
 /// The attributes that may split a point (after Position and Normal), and whether chart c's own

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/prep/corner_attributes.h"
 
+#include "tc/common/close_values.h"
 #include "tc/common/errors.h"
 #include "tc/common/mesh_topology.h"
 
@@ -16,15 +17,7 @@ namespace
 /// a jump, not the last bit of a copy.
 bool sameValue(const double* a, const double* b, int32_t components)
 {
-  for (int32_t x = 0; x < components; ++x)
-  {
-    const double scale = std::max({ 1.0, std::abs(a[x]), std::abs(b[x]) });
-    if (!(std::abs(a[x] - b[x]) <= 1e-6 * scale))
-    {
-      return false;
-    }
-  }
-  return true;
+  return closeValues(a, b, static_cast<size_t>(components), 1e-6);
 }
 
 /// The point of polygon c of `soup` nearest to `p`.
