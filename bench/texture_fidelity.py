@@ -24,7 +24,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkTexture, vtkWindowToImageFilter)
+                                         vtkRenderWindow, vtkWindowToImageFilter)
 
 import trichart
 from trichart import tcArrayNames
@@ -47,20 +47,6 @@ def add_checker(mesh):
                     (size, tcArrayNames.BaseColorTextureSize())):
         a.SetName(name)
         mesh.GetFieldData().AddArray(a)
-
-
-def texture_of(mesh):
-    fd = mesh.GetFieldData()
-    size = fd.GetArray(tcArrayNames.BaseColorTextureSize())
-    image = vtkImageData()
-    image.SetDimensions(int(size.GetComponent(0, 0)), int(size.GetComponent(0, 1)), 1)
-    image.GetPointData().SetScalars(fd.GetArray(tcArrayNames.BaseColorTexture()))
-    texture = vtkTexture()
-    texture.SetInputData(image)
-    texture.InterpolateOn()
-    texture.MipmapOn()
-    texture.RepeatOn()
-    return texture
 
 
 class Pictures:
@@ -145,7 +131,7 @@ def wrong_share(pictures, mesh, atlas):
     lod.SetInputData(atlas)
     lod.SetFixedLevel(-1)
     lod.SetColorMode(trichart.tcLODMapper.ColorByTexture)
-    texture = texture_of(mesh)
+    texture = trichart.base_color_texture(mesh)
     covered = wrong = 0
     keep = os.environ.get("TRICHART_BENCH_PICTURES")
     for k, side in enumerate(SIDES):

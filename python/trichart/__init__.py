@@ -33,7 +33,8 @@ from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features, 
                        base_complex, trace_paths, geometry_images, rebuild, surface_distance,
                        read_atlas, write_atlas, atlas_charts, build, TriChartError,
                        UntraceableError, ResourceError, estimate_memory, set_max_threads,
-                       write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS)
+                       write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS,
+                       base_color_texture)
 
 
 def plugin_path():

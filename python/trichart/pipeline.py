@@ -443,6 +443,29 @@ def write_mesh(mesh, path):
     return path
 
 
+def base_color_texture(mesh):
+    """The base-colour texture `mesh` carries (the field arrays tcMeshReader and tcGeometryImageMesh
+    give it) as a vtkTexture, linear, mipmapped and repeated as glTF samples it; None without
+    one. Draw it with the mesh's TextureCoordinates as its active texture coordinates."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkRenderingCore import vtkTexture
+
+    fd = mesh.GetFieldData()
+    rgba = fd.GetArray(TriChartIO.tcArrayNames.BaseColorTexture())
+    size = fd.GetArray(TriChartIO.tcArrayNames.BaseColorTextureSize())
+    if rgba is None or size is None:
+        return None
+    image = vtkImageData()
+    image.SetDimensions(int(size.GetComponent(0, 0)), int(size.GetComponent(0, 1)), 1)
+    image.GetPointData().SetScalars(rgba)
+    texture = vtkTexture()
+    texture.SetInputData(image)
+    texture.InterpolateOn()
+    texture.MipmapOn()
+    texture.RepeatOn()
+    return texture
+
+
 def check_gltf_file_name(path):
     """Raise TriChartError unless `path` names a glTF file (.glb or .gltf)."""
     if not TriChartIO.tcGLTFWriter.IsGLTFFileName(str(path)):

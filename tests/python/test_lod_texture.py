@@ -15,34 +15,21 @@ from imagecompare import differing_inner_pixels, differing_pixels
 SIZE = (320, 320)
 
 
-@pytest.fixture(scope="module")
-def sphere(testing_data):
-    mesh = trichart.read_mesh(testing_data / "meshes" / "textured_sphere.glb")
+def atlas_of(mesh):
+    """The static pipeline at its defaults, from `mesh` to its atlas."""
     clean, _ = trichart.prepare(mesh)
     surface, _ = trichart.curvature(clean)
     clusters, _ = trichart.cluster(surface)
     features, _, _ = trichart.refine_features(clusters)
     _, parameterized = trichart.base_complex(features)
     patches, _ = trichart.trace_paths(parameterized)
-    return mesh, trichart.geometry_images(patches)
+    return trichart.geometry_images(patches)
 
 
-def input_texture(mesh):
-    """The reader's BaseColorTexture field as a vtkTexture (linear, mipmapped, repeated)."""
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkRenderingCore import vtkTexture
-
-    fd = mesh.GetFieldData()
-    size = fd.GetArray(tcArrayNames.BaseColorTextureSize())
-    image = vtkImageData()
-    image.SetDimensions(int(size.GetComponent(0, 0)), int(size.GetComponent(0, 1)), 1)
-    image.GetPointData().SetScalars(fd.GetArray(tcArrayNames.BaseColorTexture()))
-    texture = vtkTexture()
-    texture.SetInputData(image)
-    texture.InterpolateOn()
-    texture.MipmapOn()
-    texture.RepeatOn()
-    return texture
+@pytest.fixture(scope="module")
+def sphere(testing_data):
+    mesh = trichart.read_mesh(testing_data / "meshes" / "textured_sphere.glb")
+    return mesh, atlas_of(mesh)
 
 
 _WINDOW = []
@@ -123,7 +110,7 @@ def test_color_by_texture_matches_vtk_rendering_the_textured_input(sphere, tmp_p
         reference = vtkPolyDataMapper()
         reference.SetInputData(mesh)
         reference.ScalarVisibilityOff()
-        expected = render(reference, input_texture(mesh), temp / f"texture_vtk_{name}.png",
+        expected = render(reference, trichart.base_color_texture(mesh), temp / f"texture_vtk_{name}.png",
                           direction)
         lod = trichart.tcLODMapper()
         lod.SetInputData(atlas)
@@ -232,13 +219,7 @@ def test_vertex_colours_reach_the_renderer_and_the_export(testing_data, tmp_path
     colors.SetName(tcArrayNames.Colors())
     mesh.GetPointData().AddArray(colors)
     mesh.GetPointData().RemoveArray(tcArrayNames.TextureCoordinates())
-    clean, _ = trichart.prepare(mesh)
-    surface, _ = trichart.curvature(clean)
-    clusters, _ = trichart.cluster(surface)
-    features, _, _ = trichart.refine_features(clusters)
-    _, parameterized = trichart.base_complex(features)
-    patches, _ = trichart.trace_paths(parameterized)
-    atlas = trichart.geometry_images(patches)
+    atlas = atlas_of(mesh)
     assert atlas.GetNumberOfBlocks() == 2  # no texture to carry
     temp = pathlib.Path(os.environ.get("TRICHART_TEMP", tmp_path))
     reference = vtkPolyDataMapper()
