@@ -3,6 +3,7 @@
 
 #include "tcFirstMessage.h"
 #include "tcMeshConversion.h"
+#include "tcSkinData.h"
 #include "tcTextureDecoding.h"
 
 #include "tc/common/array_names.h"
@@ -10,6 +11,7 @@
 #include "tc/common/file_names.h"
 #include "tc/io/off_io.h"
 #include "tc/io/scene_io.h"
+#include "tc/io/sequence_io.h"
 #include "tc/io/soup_io.h"
 
 #include <vtkCellData.h>
@@ -23,8 +25,10 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtksys/SystemTools.hxx>
@@ -35,6 +39,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -184,22 +189,43 @@ void AddMeshFileData(ReadResult& read, const tc::PointAttributes& attributes,
   }
 }
 
-/// The report lines of a scene file: its meshes, skins, animations and skipped primitives.
+/// "1.25" seconds, shortest form.
+std::string Seconds(double t)
+{
+  std::ostringstream text;
+  text << t;
+  return text.str();
+}
+
+/// The report lines of a scene file: its meshes, skeleton, skin, animations and skipped
+/// primitives.
 std::string SceneReport(const tc::Scene& scene)
 {
   std::ostringstream facts;
   facts << Count(static_cast<int64_t>(scene.meshNames.size()), "mesh", "meshes") << " ("
         << scene.meshInstances << " placed by the scene's nodes; cell array " << tc::kSceneMeshId
-        << "), in the rest pose\n";
+        << ")\n";
   if (scene.skinnedMeshes > 0)
   {
     facts << "skinned: " << Count(scene.skinnedMeshes, "mesh", "meshes") << ", "
-          << Count(scene.bones, "bone", "bones") << " (skin weights not read)\n";
+          << Count(scene.bones, "bone", "bones") << "\n";
   }
-  if (scene.animations + scene.morphTargets > 0)
+  if (!scene.skeleton.empty())
   {
-    facts << Count(scene.animations, "animation", "animations") << " and "
-          << Count(scene.morphTargets, "morph target", "morph targets") << " not applied\n";
+    facts << "skeleton: "
+          << Count(static_cast<int64_t>(scene.skeleton.joints.size()), "joint", "joints")
+          << " (output port 1); skin weights per point (point arrays " << tc::kSkinIndices << ", "
+          << tc::kSkinWeights << ", 4 influences)\n";
+  }
+  for (size_t a = 0; a < scene.animations.size(); ++a)
+  {
+    const tc::Animation& animation = scene.animations[a];
+    facts << "animation " << a << " '" << animation.name << "': " << Seconds(animation.duration)
+          << " s, " << tc::animationKeyTimes(animation).size() << " key times\n";
+  }
+  if (scene.morphTargets > 0)
+  {
+    facts << Count(scene.morphTargets, "morph target", "morph targets") << " not applied\n";
   }
   if (scene.skippedPrimitives > 0)
   {
@@ -209,18 +235,52 @@ std::string SceneReport(const tc::Scene& scene)
   return (scene.importer.empty() ? "" : "importer: " + scene.importer + "\n") + facts.str();
 }
 
-/// The surfaces of a scene file through Assimp (tc::readScene), with cell array SceneMeshId.
-ReadResult ReadScene(const std::string& fileName, const tc::Progress& progress)
+/// The surfaces of a scene file through Assimp (tc::readScene), with cell array SceneMeshId
+/// and the skin's point arrays; the scene itself in `scene` (for posing).
+ReadResult ReadScene(
+  const std::string& fileName, const tc::Progress& progress, std::optional<tc::Scene>& scene)
 {
   ReadResult read;
   try
   {
-    const tc::Scene scene = tc::readScene(fileName, progress);
+    scene = tc::readScene(fileName, progress);
     read.mesh = vtkSmartPointer<vtkPolyData>::New();
-    tcvtk::FromPolygonSoup(scene.soup, read.mesh);
-    read.mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene.meshId));
-    read.sceneReport = SceneReport(scene);
-    AddMeshFileData(read, scene.attributes, scene.texture, scene.warnings);
+    tcvtk::FromPolygonSoup(scene->soup, read.mesh);
+    read.mesh->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kSceneMeshId, scene->meshId));
+    if (!scene->skin.empty())
+    {
+      tcvtk::AddSkinArrays(read.mesh->GetPointData(), scene->skin);
+    }
+    read.sceneReport = SceneReport(*scene);
+    AddMeshFileData(read, scene->attributes, scene->texture, scene->warnings);
+  }
+  catch (const tc::Aborted&)
+  {
+    read.aborted = true;
+  }
+  catch (const std::exception& e)
+  {
+    read.error = e.what();
+  }
+  return read;
+}
+
+/// A deforming sequence (tc::readSequence): frame 0 as the mesh, the frames in `sequence`.
+ReadResult ReadSequence(const std::string& path, const tc::Progress& progress,
+  std::optional<tc::DeformingSequence>& sequence)
+{
+  ReadResult read;
+  try
+  {
+    sequence = tc::readSequence(path, progress);
+    read.mesh = vtkSmartPointer<vtkPolyData>::New();
+    tcvtk::FromPolygonSoup(sequence->soup, read.mesh);
+    AddMeshFileData(read, sequence->attributes, sequence->texture, sequence->warnings);
+    const std::vector<double>& times = sequence->times;
+    read.sceneReport = "sequence (" + sequence->source + ") of " +
+      Count(static_cast<int64_t>(times.size()), "frame", "frames") +
+      " with one connectivity, times " + Seconds(times.front()) + " to " + Seconds(times.back()) +
+      "\n";
   }
   catch (const tc::Aborted&)
   {
@@ -368,16 +428,117 @@ std::string ReadReport(const std::string& fileName, const std::string& format, v
 }
 }
 
+/// The file last read, as read: the rest mesh with its arrays and report lines, and what poses
+/// it over time (a scene's skeleton and animations, or a sequence's frames).
+class tcMeshReaderCache
+{
+public:
+  std::string fileName;
+  std::filesystem::file_time_type stamp;
+  std::string format;
+  ReadResult rest;
+  std::optional<tc::Scene> scene;
+  std::optional<tc::DeformingSequence> sequence;
+};
+
+namespace
+{
+/// The file's last change (a folder's for a sequence folder; none for a pattern, read once).
+std::filesystem::file_time_type Stamp(const std::string& path)
+{
+  std::error_code ec;
+  const auto stamp = std::filesystem::last_write_time(path, ec);
+  return ec ? std::filesystem::file_time_type() : stamp;
+}
+
+/// The index of the animation `choice` names in `scene` ("" the first, digits an index), -1
+/// when the scene has none; `error` says why a choice is refused.
+int ChooseAnimation(const tc::Scene& scene, const std::string& choice, std::string& error)
+{
+  const int n = static_cast<int>(scene.animations.size());
+  if (n == 0)
+  {
+    return -1;
+  }
+  if (choice.empty())
+  {
+    return 0;
+  }
+  for (int a = 0; a < n; ++a)
+  {
+    if (scene.animations[a].name == choice)
+    {
+      return a;
+    }
+  }
+  if (std::all_of(choice.begin(), choice.end(), [](unsigned char c) { return std::isdigit(c); }) &&
+    choice.size() < 9 && std::stoi(choice) < n)
+  {
+    return std::stoi(choice);
+  }
+  std::string names;
+  for (int a = 0; a < n; ++a)
+  {
+    names += (a ? ", '" : "'") + scene.animations[a].name + "' (" + std::to_string(a) + ")";
+  }
+  error = "the file has no animation '" + choice + "'; its animations are " + names;
+  return -1;
+}
+
+/// Sets the time steps and range of every output port; none when `times` is empty.
+void AnnounceTimes(vtkInformationVector* outputs, const std::vector<double>& times)
+{
+  for (int port = 0; port < outputs->GetNumberOfInformationObjects(); ++port)
+  {
+    vtkInformation* info = outputs->GetInformationObject(port);
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    if (!times.empty())
+    {
+      const double range[2] = { times.front(), times.back() };
+      info->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+        static_cast<int>(times.size()));
+      info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    }
+  }
+}
+
+/// `rest` with its points replaced by `points` (#V x 3), its arrays shared.
+vtkSmartPointer<vtkPolyData> WithPoints(vtkPolyData* rest, const std::vector<double>& points)
+{
+  vtkNew<vtkPoints> moved;
+  moved->SetDataTypeToDouble();
+  moved->SetNumberOfPoints(rest->GetNumberOfPoints());
+  std::copy(
+    points.begin(), points.end(), static_cast<double*>(moved->GetData()->GetVoidPointer(0)));
+  auto posed = vtkSmartPointer<vtkPolyData>::New();
+  posed->ShallowCopy(rest);
+  posed->SetPoints(moved);
+  return posed;
+}
+
+/// The frame of `sequence` shown at `t`: the last one whose time is not after t (the first
+/// before them all).
+size_t FrameAt(const tc::DeformingSequence& sequence, double t)
+{
+  const auto& times = sequence.times;
+  const size_t after =
+    static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  return after == 0 ? 0 : after - 1;
+}
+} // namespace
+
 tcMeshReader::tcMeshReader()
 {
   this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
 }
 
 tcMeshReader::~tcMeshReader() = default;
 
 bool tcMeshReader::CanReadFile(const char* fileName)
 {
-  return fileName && !FormatOf(fileName).empty();
+  return fileName && (!FormatOf(fileName).empty() || tc::isSequencePath(fileName));
 }
 
 const char* tcMeshReader::GetSupportedExtensions()
@@ -394,45 +555,65 @@ const char* tcMeshReader::GetSupportedExtensions()
   return extensions.c_str();
 }
 
-int tcMeshReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int tcMeshReader::GetNumberOfAnimations() const
 {
-  // 1. Output.
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  this->Report.clear();
+  return this->Cache && this->Cache->scene ? static_cast<int>(this->Cache->scene->animations.size())
+                                           : 0;
+}
 
-  // 2. Validate: the file must exist and have an extension we know.
+const char* tcMeshReader::GetAnimationName(int index) const
+{
+  return index >= 0 && index < this->GetNumberOfAnimations()
+    ? this->Cache->scene->animations[index].name.c_str()
+    : nullptr;
+}
+
+bool tcMeshReader::Load()
+{
+  // 1. Validate: the file must exist and have an extension we know (or be a sequence).
   if (this->FileName.empty())
   {
     vtkErrorMacro("No file name set; call SetFileName with a mesh file.");
-    return 0;
+    return false;
   }
-  if (!std::ifstream(this->FileName).good())
+  const bool sequence = tc::isSequencePath(this->FileName);
+  if (this->Cache && this->Cache->fileName == this->FileName &&
+    this->Cache->stamp == Stamp(this->FileName))
+  {
+    return true;
+  }
+  this->Cache.reset();
+  if (!sequence && !std::ifstream(this->FileName).good())
   {
     vtkErrorMacro(
       "Cannot open '" << this->FileName << "': the file does not exist or is not readable.");
-    return 0;
+    return false;
   }
-  const std::string format = FormatOf(this->FileName);
+  const std::string format = sequence ? "sequence" : FormatOf(this->FileName);
   if (format.empty())
   {
     vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads "
-                                  << MeshExtensionList() << " meshes, and the scene formats "
-                                  << tc::sceneExtensions() << ".");
-    return 0;
+                                  << MeshExtensionList() << " meshes, the scene formats "
+                                  << tc::sceneExtensions()
+                                  << ", and sequences (a folder of frames, a pattern with * or ?, "
+                                     "or .md2).");
+    return false;
   }
 
-  // 3. Read with the reader of that format.
-  const ReadResult read = tc::isSceneFile(this->FileName)
-    ? ReadScene(this->FileName, tcvtk::MakeProgress(this))
-    : IsCoreFormat(format) ? ReadWithCore(this->FileName, format)
-                           : ReadWithVTK(this->FileName, format);
+  // 2. Read with the reader of that format.
+  auto cache = std::make_unique<tcMeshReaderCache>();
+  const tc::Progress progress = tcvtk::MakeProgress(this);
+  cache->rest = sequence              ? ReadSequence(this->FileName, progress, cache->sequence)
+    : tc::isSceneFile(this->FileName) ? ReadScene(this->FileName, progress, cache->scene)
+    : IsCoreFormat(format)            ? ReadWithCore(this->FileName, format)
+                                      : ReadWithVTK(this->FileName, format);
+  const ReadResult& read = cache->rest;
   if (read.aborted)
   {
-    return 0;
+    return false;
   }
 
-  // 4. A file without polygons is an error, whatever the reader said.
+  // 3. A file without polygons is an error, whatever the reader said.
   const vtkIdType polygons =
     read.mesh ? read.mesh->GetNumberOfPolys() + read.mesh->GetNumberOfStrips() : 0;
   if (!read.error.empty() || polygons == 0)
@@ -440,13 +621,107 @@ int tcMeshReader::RequestData(
     vtkErrorMacro("Cannot read '" << this->FileName << "' as " << format << ": "
                                   << (read.error.empty() ? "no polygons found" : read.error)
                                   << ". Check that the file is a complete " << format
-                                  << " surface mesh.");
+                                  << (sequence ? " of frames." : " surface mesh."));
+    return false;
+  }
+  cache->fileName = this->FileName;
+  cache->stamp = Stamp(this->FileName);
+  cache->format = format;
+  this->Cache = std::move(cache);
+  return true;
+}
+
+int tcMeshReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (!this->Load())
+  {
     return 0;
   }
+  std::vector<double> times;
+  if (this->Cache->scene && !this->BindPose)
+  {
+    std::string error;
+    const int a = ChooseAnimation(*this->Cache->scene, this->Animation, error);
+    if (!error.empty())
+    {
+      vtkErrorMacro("Cannot pose '" << this->FileName << "': " << error << ".");
+      return 0;
+    }
+    times = a >= 0 ? tc::animationKeyTimes(this->Cache->scene->animations[a]) : times;
+  }
+  if (this->Cache->sequence && !this->BindPose)
+  {
+    times = this->Cache->sequence->times;
+  }
+  AnnounceTimes(outputVector, times);
+  return 1;
+}
 
-  // 5. Output and report.
-  output->ShallowCopy(read.mesh);
-  this->Report = ReadReport(this->FileName, format, output, read.sceneReport, read.notes);
+int tcMeshReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // 1. Outputs.
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* skeletonOutput = vtkPolyData::GetData(outputVector, 1);
+  this->Report.clear();
+
+  // 2. Validate and read (once per file: RequestInformation has usually read it).
+  if (!this->Load())
+  {
+    return 0;
+  }
+  const tcMeshReaderCache& cache = *this->Cache;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const bool timed = !this->BindPose &&
+    outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()) &&
+    outInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double t = timed ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()) : 0.0;
+
+  // 3. Pose: a scene by its animation at t, a sequence by its frame at t.
+  std::string pose = "in the rest pose", animationName;
+  vtkSmartPointer<vtkPolyData> mesh = cache.rest.mesh;
+  if (cache.scene && !cache.scene->skeleton.empty())
+  {
+    std::string error;
+    const int a = timed ? ChooseAnimation(*cache.scene, this->Animation, error) : -1;
+    const tc::Animation* animation = a >= 0 ? &cache.scene->animations[a] : nullptr;
+    const std::vector<tc::Matrix4> globals = tc::jointGlobals(cache.scene->skeleton, animation, t);
+    if (animation)
+    {
+      mesh = WithPoints(mesh,
+        tc::skinPoints(cache.scene->soup.points, cache.scene->skin,
+          tc::skinningMatrices(cache.scene->skeleton, globals)));
+      pose = "posed by animation '" + animation->name + "' at " + Seconds(t) + " s";
+      animationName = animation->name;
+    }
+    skeletonOutput->ShallowCopy(tcvtk::SkeletonPolyData(cache.scene->skeleton, globals));
+  }
+  if (cache.sequence && timed)
+  {
+    const size_t k = FrameAt(*cache.sequence, t);
+    const std::vector<float>& frame = cache.sequence->frames[k];
+    mesh = WithPoints(mesh, std::vector<double>(frame.begin(), frame.end()));
+    pose = "frame " + std::to_string(k) + " (" + cache.sequence->frameNames[k] + ")";
+  }
+
+  // 4. Output, time and report, in field data of the output's own (the cached mesh's stays).
+  output->ShallowCopy(mesh);
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(mesh->GetFieldData());
+  output->SetFieldData(fields);
+  if (!animationName.empty())
+  {
+    tcvtk::SetTextField(fields, tc::kAnimationName, animationName);
+  }
+  if (timed)
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+    skeletonOutput->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+  }
+  const bool moves = cache.sequence || (cache.scene && !cache.scene->animations.empty());
+  this->Report = ReadReport(this->FileName, cache.format, output,
+    cache.rest.sceneReport + (moves ? pose + "\n" : ""), cache.rest.notes);
   tcvtk::SetTextField(output->GetFieldData(), tc::kReaderReport, this->Report);
   return 1;
 }
@@ -455,5 +730,7 @@ void tcMeshReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Animation: " << this->Animation << "\n";
+  os << indent << "BindPose: " << this->BindPose << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

@@ -28,6 +28,18 @@
  *   "BaseColorTextureName" (the file name, or "embedded:<k>"). A texture that is missing or
  *   cannot be decoded is a warning: the mesh is read without it.
  *
+ * Skinned and animated scenes, and deforming sequences, are read over time:
+ * - a scene's skeleton (tc::readScene) is on output port 1, a point per joint at its frame's
+ *   origin with a line to its parent (point arrays JointNames, JointParent,
+ *   InverseBindMatrices, JointTransforms), and the mesh has the point arrays SkinIndices and
+ *   SkinWeights (the 4 largest influences). The reader announces the key times of the chosen
+ *   Animation (TIME_STEPS and TIME_RANGE, in seconds); a time request returns the mesh and the
+ *   skeleton posed by linear blend skinning at that time (any time, between keys too), and no
+ *   time request (or BindPose on) the rest pose;
+ * - a deforming sequence (tc::readSequence): a folder of OBJ/PLY/OFF frames with one
+ *   connectivity, a glob pattern naming them, or an MD2 file's vertex keyframes. Frame k is
+ *   at time k; a time request returns the frame at the largest time not after it.
+ *
  * What was read (format, points, polygons, texture coordinates, vertex colours, "texture NAME
  * WxH", arrays, warnings) is in GetReport() and in the field array "ReaderReport". A missing
  * file, an unknown extension or a file that holds no polygons is an error that names the file
@@ -40,7 +52,10 @@
 
 #include <vtkPolyDataAlgorithm.h>
 
+#include <memory>
 #include <string>
+
+class tcMeshReaderCache;
 
 class TRICHARTIO_EXPORT tcMeshReader : public vtkPolyDataAlgorithm
 {
@@ -55,6 +70,26 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// The animation that poses a scene at the requested times: its name or its index in the
+  /// file; "" (the default) for the first. A name the file does not have is an error that
+  /// lists the file's animations.
+  vtkSetStdStringFromCharMacro(Animation);
+  vtkGetCharFromStdStringMacro(Animation);
+  ///@}
+
+  ///@{
+  /// Read a skinned or animated scene, or a sequence, in its rest pose (frame 0) and announce
+  /// no time steps, so a pipeline downstream runs once. Off by default.
+  vtkSetMacro(BindPose, bool);
+  vtkGetMacro(BindPose, bool);
+  vtkBooleanMacro(BindPose, bool);
+  ///@}
+
+  /// The animations of the file last read (after UpdateInformation), in the file's order.
+  int GetNumberOfAnimations() const;
+  const char* GetAnimationName(int index) const;
+
   /// One line per fact of the last read: format, counts, arrays.
   const char* GetReport() const { return this->Report.c_str(); }
 
@@ -68,14 +103,22 @@ protected:
   tcMeshReader();
   ~tcMeshReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   tcMeshReader(const tcMeshReader&) = delete;
   void operator=(const tcMeshReader&) = delete;
 
+  /// Reads the file into Cache unless it holds this file as it is on disk; false with an error
+  /// raised when the file cannot be read (or the read was aborted).
+  bool Load();
+
   std::string FileName;
+  std::string Animation;
+  bool BindPose = false;
   std::string Report;
+  std::unique_ptr<tcMeshReaderCache> Cache;
 };
 
 #endif

@@ -203,6 +203,39 @@ def cmd_mesh(args):
     return 0
 
 
+def cmd_pose(args):
+    """The animations and time steps of a skinned scene or a sequence; with --time, the mesh
+    (and --skeleton, the skeleton) posed at that time."""
+    from .pipeline import (animation_names, check_mesh_file_name, read_mesh, read_skeleton,
+                           time_steps, write_mesh)
+
+    for path in (args.output, args.skeleton):
+        if path:
+            check_mesh_file_name(path)
+    names = animation_names(args.source)
+    steps = time_steps(args.source, animation=args.animation)
+    for index, name in enumerate(names):
+        print(f"animation {index}: {name}")
+    if steps:
+        print(f"{len(steps)} time steps, {steps[0]:g} to {steps[-1]:g} s")
+    else:
+        print("no time steps: the file does not move")
+    if args.time is None:
+        if args.output or args.skeleton:
+            raise SystemExit("trichart: error: --time T says when to pose (see the time steps above)")
+        return 0
+    if args.output:
+        mesh = read_mesh(args.source, time=args.time, animation=args.animation)
+        print(f"wrote {write_mesh(mesh, args.output)} ({mesh.GetNumberOfPoints()} points, "
+              f"posed at {args.time:g} s)")
+    if args.skeleton:
+        skeleton = read_skeleton(args.source, time=args.time, animation=args.animation)
+        if skeleton.GetNumberOfPoints() == 0:
+            raise SystemExit(f"trichart: error: {args.source} has no skeleton")
+        print(f"wrote {write_mesh(skeleton, args.skeleton)} ({skeleton.GetNumberOfPoints()} joints)")
+    return 0
+
+
 def cmd_export(args):
     from .pipeline import check_gltf_file_name, export_gltf, read_atlas
 
@@ -497,7 +530,7 @@ def _add_export_parser(sub, d):
 
 
 def _parser(d):
-    """The command line: info, build, mesh, export, eval and prepare, with the filters'
+    """The command line: info, build, mesh, export, pose, eval and prepare, with the filters'
     defaults."""
     from .pipeline import MESH_EXTENSIONS
 
@@ -515,6 +548,16 @@ def _parser(d):
     p.add_argument("-o", "--output", required=True,
                    help="output mesh, in the format its extension names: " + formats)
     _add_export_parser(sub, d)
+    p = sub.add_parser("pose", help="animations of a skinned scene or a sequence, and the mesh "
+                                     "posed at a time")
+    p.add_argument("source", help="a scene file (.glb, .gltf, .fbx, .x), an MD2 file, a folder "
+                                  "of frames or a pattern such as 'frames/f_*.obj'")
+    p.add_argument("--animation", default="", help="name or index of the animation (default: "
+                                                   "the first)")
+    p.add_argument("--time", type=float, help="seconds (a sequence: frame k at time k)")
+    p.add_argument("-o", "--output", help="the posed mesh, in the format its extension names: " +
+                   formats)
+    p.add_argument("--skeleton", help="the posed skeleton (joints and bones as lines): .vtp or .vtk")
     p = sub.add_parser("eval", help="error of every level of an atlas against a mesh")
     p.add_argument("mesh", help="the original mesh")
     p.add_argument("atlas", help="atlas file (.exr)")
@@ -632,7 +675,7 @@ def _main(argv):
 
     try:
         commands = {"info": cmd_info, "build": cmd_build, "mesh": cmd_mesh, "eval": cmd_eval,
-                    "prepare": cmd_prepare, "export": cmd_export}
+                    "prepare": cmd_prepare, "export": cmd_export, "pose": cmd_pose}
         return commands[args.command](args)
     except TriChartError as error:
         print(f"trichart: error: {error}", file=sys.stderr)

@@ -7,6 +7,7 @@ import time
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures,
                TriChartGeometryImages, TriChartIO, TriChartPreparation)
@@ -201,13 +202,59 @@ def _output(algorithm, port=0):
     return copy
 
 
-def read_mesh(path, progress=None):
-    """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), or the surfaces of a
-    scene file (.glb, .gltf, .fbx, .x, .md2) in their rest pose, into a vtkPolyData."""
+def _mesh_reader(path, animation, bind_pose):
     reader = TriChartIO.tcMeshReader()
     reader.SetFileName(str(path))
-    run(reader, "read", progress)
+    reader.SetAnimation("" if animation is None else str(animation))
+    reader.SetBindPose(bool(bind_pose))
+    return reader
+
+
+def _run_at(reader, time, label, progress):
+    if time is not None:
+        reader.UpdateInformation()
+        reader.GetOutputInformation(0).Set(
+            vtkStreamingDemandDrivenPipeline.UPDATE_TIME_STEP(), float(time))
+    return run(reader, label, progress)
+
+
+def read_mesh(path, progress=None, time=None, animation=None, bind_pose=False):
+    """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), the surfaces of a
+    scene file (.glb, .gltf, .fbx, .x, .md2), or a deforming sequence (a folder of frames, a
+    pattern such as 'frames/f_*.obj', or an MD2 file's keyframes) into a vtkPolyData.
+
+    Without `time`, the rest pose (a sequence's first frame); with it (seconds), the scene
+    posed by `animation` (its name or index; the first by default) or the sequence's frame
+    at that time. bind_pose=True reads the rest pose and announces no time steps."""
+    reader = _mesh_reader(path, animation, bind_pose)
+    _run_at(reader, time, "read", progress)
     return _output(reader)
+
+
+def read_skeleton(path, time=None, animation=None):
+    """The skeleton of a skinned or animated scene file as polydata (a point per joint, a
+    line to its parent; point arrays JointNames, JointParent, InverseBindMatrices,
+    JointTransforms), posed at `time` like read_mesh; empty for a file without one."""
+    reader = _mesh_reader(path, animation, False)
+    _run_at(reader, time, "read", None)
+    return _output(reader, 1)
+
+
+def time_steps(path, animation=None):
+    """The times (seconds) a scene's animation or a sequence's frames are announced at; ()
+    for a static mesh."""
+    reader = _mesh_reader(path, animation, False)
+    run(reader, "read")
+    info = reader.GetOutputInformation(0)
+    key = vtkStreamingDemandDrivenPipeline.TIME_STEPS()
+    return tuple(info.Get(key)) if info.Has(key) else ()
+
+
+def animation_names(path):
+    """The names of a scene file's animations, in the file's order."""
+    reader = _mesh_reader(path, None, True)
+    run(reader, "read")
+    return [reader.GetAnimationName(a) for a in range(reader.GetNumberOfAnimations())]
 
 
 def prepare(mesh, progress=None, **options):

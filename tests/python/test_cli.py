@@ -219,5 +219,7 @@ def test_build_takes_a_skinned_character_in_its_rest_pose(shared_data, tmp_path)
     assert r.returncode == 0, r.stderr
     assert "2112 triangles" in r.stdout and "triangulated 1056 polygons" in r.stdout, r.stdout
     assert "read: importer: Autodesk FBX Importer" in r.stdout, r.stdout
-    assert "read: skinned: 1 mesh, 14 bones (skin weights not read)" in r.stdout, r.stdout
+    assert "read: skinned: 1 mesh, 14 bones" in r.stdout, r.stdout
+    assert "read: skeleton: 17 joints" in r.stdout, r.stdout
+    assert "read: animation 0 'Armature|ArmatureAction': 0.833333 s, 14 key times" in r.stdout
     assert (tmp_path / "snake.exr").stat().st_size > 0

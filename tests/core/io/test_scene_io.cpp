@@ -136,7 +136,7 @@ TEST_F(SceneFiles, EveryNodePlacesItsMeshWithTheTransformFromTheRoot)
   ASSERT_EQ(scene.soup.numPoints(), 12);
   ASSERT_EQ(scene.soup.numPolygons(), 12);
   EXPECT_EQ(scene.meshId, std::vector<int32_t>(12, 0));
-  EXPECT_EQ(scene.bones + scene.animations + scene.skippedPrimitives + scene.skinnedMeshes, 0);
+  EXPECT_EQ(scene.bones + int64_t(scene.animations.size()) + scene.skippedPrimitives + scene.skinnedMeshes, 0);
 
   // Each instance is 4 consecutive points and 4 consecutive triangles.
   std::set<std::array<double, 3>> origins;
@@ -234,7 +234,7 @@ TEST(SceneIo, SkinnedCharactersReadInTheirRestPoseAlikeFromEachFormat)
     EXPECT_EQ(s->soup.numPolygons(), 3732);
     EXPECT_EQ(s->bones, 37);
     EXPECT_EQ(s->skinnedMeshes, 1);
-    EXPECT_EQ(s->animations, 3);
+    EXPECT_EQ(s->animations.size(), 3u);
   }
   // The glTF was converted from the X file: the same points in the same place (in another
   // order).

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/io/scene_io.h"
 
+#include "io/scene_skin.h"
 #include "io/scene_textures.h"
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"
@@ -117,10 +118,17 @@ void keepCompleteAttributes(Scene& out, const AttributeGaps& gaps)
   keep(out.attributes.colors, gaps.withoutColor, "colours");
 }
 
+/// What addNode gathers besides the scene's polygons.
+struct Gathering
+{
+  AttributeGaps gaps;
+  SceneSkinBuilder skin;
+};
+
 /// Appends the meshes of `node` and of its children, each placed with the transform
 /// accumulated from the root.
-void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Scene& out,
-  AttributeGaps& gaps)
+void addNode(
+  const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Scene& out, Gathering& more)
 {
   const aiMatrix4x4 transform = parent * node.mTransformation;
   // A mirroring transform reverses the winding; put it back so faces keep their side.
@@ -139,7 +147,11 @@ void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
       const aiVector3D p = transform * mesh.mVertices[v];
       out.soup.points.insert(out.soup.points.end(), { p.x, p.y, p.z });
     }
-    addPointAttributes(mesh, out, gaps);
+    addPointAttributes(mesh, out, more.gaps);
+    if (more.skin.active())
+    {
+      more.skin.addMesh(mesh, node, transform, out.skin);
+    }
     std::vector<int64_t> ids;
     for (unsigned f = 0; f < mesh.mNumFaces; ++f)
     {
@@ -171,7 +183,33 @@ void addNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c)
   {
-    addNode(scene, *node.mChildren[c], transform, out, gaps);
+    addNode(scene, *node.mChildren[c], transform, out, more);
+  }
+}
+
+/// The warnings on what the skin's 4 influences per point and a bone-less point leave out, and
+/// on weights that do not sum to 1.
+void addSkinWarnings(Scene& out)
+{
+  if (out.skin.pointsOverLimit > 0)
+  {
+    out.warnings.push_back(std::to_string(out.skin.pointsOverLimit) + " points have more than " +
+      std::to_string(kMaxInfluences) +
+      " bone influences: the largest 4 are kept and renormalized (largest weight dropped " +
+      std::to_string(out.skin.largestDropped) + ")");
+  }
+  if (out.skin.pointsOffUnitSum > 0)
+  {
+    std::ostringstream range;
+    range << out.skin.smallestSum << " to " << out.skin.largestSum;
+    out.warnings.push_back(std::to_string(out.skin.pointsOffUnitSum) +
+      " points have bone weights that do not sum to 1 (" + range.str() +
+      "): kept as the file gives them, so they pose as Assimp poses them");
+  }
+  if (out.unweightedPoints > 0)
+  {
+    out.warnings.push_back(std::to_string(out.unweightedPoints) +
+      " points of skinned meshes have no bone weight: they move with their mesh's node");
   }
 }
 
@@ -359,15 +397,18 @@ Scene readScene(const std::string& path, const Progress& progress)
     }
   }
   out.bones = static_cast<int64_t>(bones.size());
-  out.animations = scene->mNumAnimations;
-  AttributeGaps gaps;
-  addNode(*scene, *scene->mRootNode, aiMatrix4x4(), out, gaps);
+  Gathering more{ {}, SceneSkinBuilder(*scene) };
+  addNode(*scene, *scene->mRootNode, aiMatrix4x4(), out, more);
   if (out.soup.numPolygons() == 0)
   {
     throw InputError("'" + path + "' has no polygons (" + std::to_string(scene->mNumMeshes) +
       " meshes, " + std::to_string(out.skippedPrimitives) + " points and lines)");
   }
-  keepCompleteAttributes(out, gaps);
+  keepCompleteAttributes(out, more.gaps);
+  out.skeleton = more.skin.skeleton();
+  out.animations = more.skin.animations(*scene, out.warnings);
+  out.unweightedPoints = more.skin.unweightedPoints();
+  addSkinWarnings(out);
   out.texture = sceneBaseColorTexture(*scene, path, out.warnings);
   return out;
 }

@@ -104,6 +104,21 @@ constexpr const char* kReferenceDiagonal =
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
 constexpr const char* kSceneMeshId = "SceneMeshId";   ///< cell: mesh of a scene file (glTF, FBX...)
+/// point: int, 4 components: each point's joints (tc::SkinWeights), largest weight first
+constexpr const char* kSkinIndices = "SkinIndices";
+/// point: float, 4 components: the weights of SkinIndices (unused slots 0)
+constexpr const char* kSkinWeights = "SkinWeights";
+/// skeleton point: string, the joint's name
+constexpr const char* kJointNames = "JointNames";
+/// skeleton point: int, the parent joint's index, -1 for a root
+constexpr const char* kJointParent = "JointParent";
+/// skeleton point: double, 16 components, row-major: from the bind pose into the joint's frame
+constexpr const char* kInverseBindMatrices = "InverseBindMatrices";
+/// skeleton point: double, 16 components, row-major: the joint's frame in the scene at the
+/// output's time
+constexpr const char* kJointTransforms = "JointTransforms";
+/// field: string, the animation the output is posed by ("" in the rest pose)
+constexpr const char* kAnimationName = "AnimationName";
 /// point: float (u, v), the active TCoords; v = 0 at the image's bottom row (OpenGL / VTK)
 constexpr const char* kTextureCoordinates = "TextureCoordinates";
 /// point: unsigned char RGBA (alpha 255 when the file gives RGB only)

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file skin.h
+/// Linear blend skinning: a skeleton of joints, keyframed animations of its joints, the skin
+/// weights of a mesh's points, and posing (Feng et al. 2010, 5.2: "the skinned mesh is
+/// deformed in the vertex shader by linear blend skinning"; here the reference on the CPU).
+///
+/// Matrices are 4 x 4, row-major (m[4 * row + column]), acting on column vectors (p' = M p),
+/// as Assimp's aiMatrix4x4 and glTF's (column-major) matrices read back.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tc
+{
+using Matrix4 = std::array<double, 16>;
+
+/// The identity matrix.
+Matrix4 identityMatrix();
+
+/// a b (a applied after b).
+Matrix4 multiply(const Matrix4& a, const Matrix4& b);
+
+/// The inverse of an invertible affine matrix (last row 0 0 0 1).
+Matrix4 inverseAffine(const Matrix4& m);
+
+/// One joint: a node of the scene's hierarchy that moves points.
+struct Joint
+{
+  std::string name;
+  int32_t parent = -1;     ///< index of the parent joint (always < this one's), -1 for a root
+  Matrix4 restLocal{};     ///< transform relative to the parent when no animation moves it
+  Matrix4 inverseBind{};   ///< from the mesh's bind pose into this joint's frame
+  int32_t sameNodeAs = -1; ///< another joint of the same node (with its own inverseBind), or -1
+};
+
+/// The joints, parents before children.
+struct Skeleton
+{
+  std::vector<Joint> joints;
+
+  bool empty() const { return joints.empty(); }
+};
+
+/// Keyframes of one joint; times in seconds, ascending. A component without keys stays at the
+/// joint's rest value.
+struct JointTrack
+{
+  int32_t joint = -1;
+  std::vector<double> positionTimes;
+  std::vector<std::array<double, 3>> positions;
+  std::vector<double> rotationTimes;
+  std::vector<std::array<double, 4>> rotations; ///< unit quaternions (w, x, y, z)
+  std::vector<double> scaleTimes;
+  std::vector<std::array<double, 3>> scales;
+};
+
+/// A keyframed animation of a skeleton: positions and scales interpolated linearly, rotations
+/// spherically, held at the first and last key outside them.
+struct Animation
+{
+  std::string name;
+  double duration = 0.0;       ///< seconds; the animation plays over [0, duration]
+  double ticksPerSecond = 0.0; ///< the file's time unit (informative: times are in seconds)
+  std::vector<JointTrack> tracks;
+};
+
+/// The distinct key times of `animation` in [0, duration], with 0 and the duration, ascending
+/// (what a reader announces as its time steps).
+std::vector<double> animationKeyTimes(const Animation& animation);
+
+/// Up to 4 joint influences per point.
+constexpr int kMaxInfluences = 4;
+
+/// Skin weights of a mesh's points: each point's kMaxInfluences largest influences (unused
+/// slots: joint 0, weight 0). Weights are kept as the file gives them, also when they do not
+/// sum to 1 (linear blend skinning does not normalize, nor does Assimp); a point cut to 4
+/// influences has the 4 renormalized to sum 1, as Assimp's LimitBoneWeights step does.
+struct SkinWeights
+{
+  std::vector<int32_t> joints;  ///< #V x 4 joint indices
+  std::vector<float> weights;   ///< #V x 4 weights, descending
+  int64_t pointsOverLimit = 0;  ///< points that had more than 4 influences before the cut
+  double largestDropped = 0.0;  ///< the largest weight cut (before renormalizing)
+  int64_t pointsOffUnitSum = 0; ///< points whose kept weights sum to 1 +- 1e-3 not
+  double smallestSum = 1.0;     ///< the smallest and largest sums of those points
+  double largestSum = 1.0;
+
+  bool empty() const { return joints.empty(); }
+};
+
+/// Keeps the kMaxInfluences largest of `influences` (joint, weight), renormalizing them when
+/// some were cut, and appends the point's 4 joints and weights to `skin`, counting a cut in
+/// pointsOverLimit and largestDropped and a sum away from 1 in pointsOffUnitSum. Weights <= 0
+/// or non-finite are ignored; a point left without weight is bound to `fallbackJoint` with
+/// weight 1.
+void addSkinPoint(
+  std::vector<std::pair<int32_t, float>> influences, int32_t fallbackJoint, SkinWeights& skin);
+
+/// Every joint's transform from its frame to the scene at `seconds` of `animation` (nullptr:
+/// the rest pose), composed from the root: global[j] = global[parent] local[j](t).
+std::vector<Matrix4> jointGlobals(
+  const Skeleton& skeleton, const Animation* animation, double seconds);
+
+/// The skinning matrices global[j] inverseBind[j], which carry a bind-pose point of joint j
+/// into the pose `globals` describes.
+std::vector<Matrix4> skinningMatrices(
+  const Skeleton& skeleton, const std::vector<Matrix4>& globals);
+
+/// Poses `bindPoints` (#V x 3) by linear blend skinning: p' = sum_k w_k M[j_k] p.
+/// @throws tc::InputError when the sizes of the points, the skin and the matrices disagree
+std::vector<double> skinPoints(const std::vector<double>& bindPoints, const SkinWeights& skin,
+  const std::vector<Matrix4>& matrices);
+} // namespace tc

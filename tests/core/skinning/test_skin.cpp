@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tc/common/errors.h"
+#include "tc/skinning/skin.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+tc::Matrix4 translation(double x, double y, double z)
+{
+  tc::Matrix4 m = tc::identityMatrix();
+  m[3] = x;
+  m[7] = y;
+  m[11] = z;
+  return m;
+}
+
+/// Two joints: a root at the origin and a child one unit up x; the child turns about z by a
+/// quarter turn over one second.
+struct Arm
+{
+  tc::Skeleton skeleton;
+  tc::Animation animation;
+
+  Arm()
+  {
+    skeleton.joints.resize(2);
+    skeleton.joints[0].name = "root";
+    skeleton.joints[0].restLocal = tc::identityMatrix();
+    skeleton.joints[0].inverseBind = tc::identityMatrix();
+    skeleton.joints[1].name = "child";
+    skeleton.joints[1].parent = 0;
+    skeleton.joints[1].restLocal = translation(1, 0, 0);
+    skeleton.joints[1].inverseBind = translation(-1, 0, 0);
+    animation.duration = 1.0;
+    tc::JointTrack turn;
+    turn.joint = 1;
+    turn.rotationTimes = { 0.0, 1.0 };
+    turn.rotations = { { 1, 0, 0, 0 }, { std::sqrt(0.5), 0, 0, std::sqrt(0.5) } };
+    animation.tracks.push_back(turn);
+  }
+};
+} // namespace
+
+TEST(Skin, AJointTurnsItsPointsAndKeepsItsRestTranslation)
+{
+  const Arm arm;
+  tc::SkinWeights skin;
+  tc::addSkinPoint({ { 1, 1.0f } }, 0, skin); // (2, 0, 0) follows the child
+  tc::addSkinPoint({ { 0, 1.0f } }, 0, skin); // (2, 0, 0) stays with the root
+  tc::addSkinPoint({ { 0, 0.5f }, { 1, 0.5f } }, 0, skin);
+  const std::vector<double> bind = { 2, 0, 0, 2, 0, 0, 2, 0, 0 };
+  const auto pose = [&](double t)
+  {
+    return tc::skinPoints(bind, skin,
+      tc::skinningMatrices(arm.skeleton, tc::jointGlobals(arm.skeleton, &arm.animation, t)));
+  };
+  const std::vector<double> end = pose(1.0);
+  // The child's point turns a quarter about (1, 0, 0): (1, 1, 0); the blend lies half-way.
+  EXPECT_NEAR(end[0], 1.0, 1e-12);
+  EXPECT_NEAR(end[1], 1.0, 1e-12);
+  EXPECT_NEAR(end[3], 2.0, 1e-12);
+  EXPECT_NEAR(end[6], 1.5, 1e-12);
+  EXPECT_NEAR(end[7], 0.5, 1e-12);
+  // Half-way in time is an eighth of a turn (slerp), and the keys hold outside [0, 1].
+  const std::vector<double> half = pose(0.5);
+  EXPECT_NEAR(half[0], 1.0 + std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(half[1], std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(pose(7.0), end);
+  EXPECT_EQ(pose(-1.0), bind);
+  // Without an animation, the rest pose: the bind points.
+  EXPECT_EQ(tc::skinPoints(bind, skin,
+              tc::skinningMatrices(arm.skeleton, tc::jointGlobals(arm.skeleton, nullptr, 0.0))),
+    bind);
+}
+
+TEST(Skin, TheFourLargestInfluencesAreKeptAndRenormalizedOnlyWhenCut)
+{
+  tc::SkinWeights skin;
+  tc::addSkinPoint({ { 3, 0.1f }, { 1, 0.3f }, { 2, 0.2f }, { 5, 0.25f }, { 4, 0.15f } }, 0, skin);
+  EXPECT_EQ(skin.joints, (std::vector<int32_t>{ 1, 5, 2, 4 }));
+  EXPECT_NEAR(skin.weights[0], 0.3f / 0.9f, 1e-6);
+  EXPECT_NEAR(skin.weights[0] + skin.weights[1] + skin.weights[2] + skin.weights[3], 1.0, 1e-6);
+  EXPECT_EQ(skin.pointsOverLimit, 1);
+  EXPECT_NEAR(skin.largestDropped, 0.1, 1e-7);
+  // Uncut weights stay as given, also when they do not sum to 1 (Assimp's definition).
+  tc::addSkinPoint({ { 2, 0.6f }, { 7, 0.7f } }, 0, skin);
+  EXPECT_FLOAT_EQ(skin.weights[4], 0.7f);
+  EXPECT_FLOAT_EQ(skin.weights[5], 0.6f);
+  EXPECT_EQ(skin.weights[6], 0.0f);
+  EXPECT_EQ(skin.pointsOffUnitSum, 1);
+  EXPECT_NEAR(skin.largestSum, 1.3, 1e-6);
+  // No usable weight: bound to the fallback joint.
+  tc::addSkinPoint({ { 2, 0.0f }, { 3, std::nanf("") } }, 9, skin);
+  EXPECT_EQ(skin.joints[8], 9);
+  EXPECT_EQ(skin.weights[8], 1.0f);
+  EXPECT_EQ(skin.joints.size(), 12u);
+}
+
+TEST(Skin, KeyTimesAndBadSizes)
+{
+  const Arm arm;
+  EXPECT_EQ(tc::animationKeyTimes(arm.animation), (std::vector<double>{ 0.0, 1.0 }));
+  tc::Animation late = arm.animation;
+  late.duration = 2.0;
+  late.tracks[0].rotationTimes = { 0.5, 3.0 };
+  EXPECT_EQ(tc::animationKeyTimes(late), (std::vector<double>{ 0.0, 0.5, 2.0 }));
+  tc::SkinWeights skin;
+  tc::addSkinPoint({ { 1, 1.0f } }, 0, skin);
+  EXPECT_THROW(
+    tc::skinPoints({ 0, 0, 0, 1, 1, 1 }, skin, { tc::identityMatrix() }), tc::InputError);
+  EXPECT_THROW(tc::skinPoints({ 0, 0, 0 }, skin, { tc::identityMatrix() }), tc::InputError);
+}

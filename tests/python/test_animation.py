@@ -1,0 +1,146 @@
+"""Skinned scenes and deforming sequences read over time: time steps, posing, the skeleton
+output, the animation choice, and the errors a user meets."""
+import pytest
+
+import trichart
+from trichart import tcArrayNames
+
+
+def _points(mesh):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    return vtk_to_numpy(mesh.GetPoints().GetData())
+
+
+def _field_text(mesh, name):
+    array = mesh.GetFieldData().GetAbstractArray(name)
+    if array is None:
+        return None
+    return "\n".join(array.GetValue(k) for k in range(array.GetNumberOfValues()))
+
+
+def _relative_vertex_distance(mesh, reference):
+    """The largest distance of a point of `mesh` to the nearest point of `reference`, and
+    back, over the reference's diagonal: the meshes' triangulations of quads may differ."""
+    import numpy as np
+    a, b = _points(mesh), _points(reference)
+    d = np.sqrt(((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2))
+    diagonal = np.linalg.norm(b.max(axis=0) - b.min(axis=0))
+    return max(d.min(axis=1).max(), d.min(axis=0).max()) / diagonal
+
+
+def test_snake_posed_at_each_baked_frame_time_matches_the_baked_frame(shared_data):
+    import numpy as np
+    fbx = shared_data / "skinned" / "snake_fbx" / "animation_with_skeleton.fbx"
+    times = trichart.time_steps(fbx)
+    assert times[0] == 0.0 and times[-1] == pytest.approx(20 / 24)
+    worst = 0.0
+    for k in (0, 7, 13, 20):
+        posed = trichart.read_mesh(fbx, time=times[-1] * k / 20)
+        baked = trichart.read_mesh(shared_data / "sequences" / "snake_closed_21f" / f"f_{k:04d}.obj")
+        worst = max(worst, _relative_vertex_distance(posed, baked))
+        assert _field_text(posed, tcArrayNames.AnimationName()) == "Armature|ArmatureAction"
+    assert worst <= 1e-4
+    rest = trichart.read_mesh(fbx)
+    assert _field_text(rest, tcArrayNames.AnimationName()) is None
+    assert not np.allclose(_points(rest), _points(trichart.read_mesh(fbx, time=0.5)))
+    print(f"snake: largest vertex distance / diagonal {worst:.2e} over 4 baked frames")
+
+
+def test_skin_arrays_and_skeleton_output(shared_data):
+    import numpy as np
+    glb = shared_data / "skinned" / "wuson" / "wuson.glb"
+    mesh = trichart.read_mesh(glb)
+    joints = mesh.GetPointData().GetArray(tcArrayNames.SkinIndices())
+    weights = mesh.GetPointData().GetArray(tcArrayNames.SkinWeights())
+    assert joints.GetNumberOfComponents() == 4 and weights.GetNumberOfComponents() == 4
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    w = vtk_to_numpy(weights)
+    assert np.all(w >= 0) and np.allclose(w.sum(axis=1), 1.0, atol=1e-3)
+    skeleton = trichart.read_skeleton(glb)
+    n = skeleton.GetNumberOfPoints()
+    assert n >= 37 and skeleton.GetNumberOfLines() == n - 1  # one root
+    names = skeleton.GetPointData().GetAbstractArray(tcArrayNames.JointNames())
+    assert "Root" in {names.GetValue(j) for j in range(n)}
+    assert vtk_to_numpy(joints).max() < n
+    # Posed at another time, the skeleton moves with the mesh.
+    later = trichart.read_skeleton(glb, time=0.5, animation="Wuson_Run")
+    assert later.GetNumberOfPoints() == n
+    assert not np.allclose(_points(later), _points(skeleton))
+    parents = vtk_to_numpy(skeleton.GetPointData().GetArray(tcArrayNames.JointParent()))
+    assert parents[0] == -1 and all(parents[j] < j for j in range(n))
+
+
+def test_animation_chosen_by_name_or_index_and_a_wrong_name_lists_them(shared_data):
+    x = shared_data / "skinned" / "wuson" / "Testwuson.X"
+    names = trichart.animation_names(x)
+    assert names == ["Wuson_Run", "Wuson_Walk", "Wuson_Bind"]
+    assert trichart.time_steps(x, animation="Wuson_Walk") == trichart.time_steps(x, animation=1)
+    assert trichart.time_steps(x, animation=1)[-1] == pytest.approx(17280 / 4800)
+    assert trichart.time_steps(x, animation="Wuson_Bind") == (0.0,)
+    with pytest.raises(trichart.TriChartError, match="Wuson_Walk' \\(1\\)"):
+        trichart.time_steps(x, animation="Dance")
+    # The bind pose: no time steps, the rest mesh whatever the time.
+    reader_rest = trichart.read_mesh(x, bind_pose=True, time=1.0)
+    import numpy as np
+    assert np.array_equal(_points(reader_rest), _points(trichart.read_mesh(x)))
+
+
+def test_sequences_from_a_folder_a_pattern_and_md2(shared_data, tmp_path):
+    import numpy as np
+    folder = shared_data / "sequences" / "frankie_run_19f"
+    assert trichart.time_steps(folder) == tuple(float(k) for k in range(19))
+    frame = trichart.read_mesh(folder, time=3.7)
+    direct = trichart.read_mesh(folder / "Frankie_Run_0003.obj")
+    assert np.allclose(_points(frame), _points(direct), atol=1e-5)
+    pattern = str(shared_data / "sequences" / "snake_closed_21f" / "f_001?.obj")
+    assert len(trichart.time_steps(pattern)) == 10
+    md2 = shared_data / "skinned" / "md2" / "sydney.md2"
+    steps = trichart.time_steps(md2)
+    assert len(steps) == 198
+    first, later = trichart.read_mesh(md2, time=0), trichart.read_mesh(md2, time=40)
+    assert first.GetNumberOfPoints() == later.GetNumberOfPoints()
+    assert not np.allclose(_points(first), _points(later))
+    assert "frame 40" in _field_text(later, tcArrayNames.ReaderReport())
+
+
+def test_a_frame_with_other_connectivity_is_named(tmp_path):
+    tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
+    other = tet.replace("3 1 2 3", "3 1 3 2")
+    (tmp_path / "f_0.off").write_text(tet)
+    (tmp_path / "f_1.off").write_text(tet)
+    (tmp_path / "f_2.off").write_text(other)
+    with pytest.raises(trichart.TriChartError, match="frame 2 \\(f_2.off\\)"):
+        trichart.read_mesh(tmp_path)
+    assert trichart.time_steps(tmp_path / "f_0.off") == ()
+
+
+def _cli(*args):
+    import subprocess
+    import sys
+    return subprocess.run([sys.executable, "-m", "trichart", *map(str, args)],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_the_command_line_lists_animations_and_writes_posed_meshes(shared_data, tmp_path):
+    glb = shared_data / "skinned" / "wuson" / "wuson.glb"
+    r = _cli("pose", glb, "--animation", "Wuson_Walk")
+    assert r.returncode == 0, r.stderr
+    assert "animation 1: Wuson_Walk" in r.stdout and "to 3.6 s" in r.stdout
+    r = _cli("pose", glb, "--animation", "1", "--time", "1.2", "-o", tmp_path / "walk.ply",
+             "--skeleton", tmp_path / "bones.vtp")
+    assert r.returncode == 0, r.stderr
+    posed = trichart.read_mesh(tmp_path / "walk.ply")
+    direct = trichart.read_mesh(glb, time=1.2, animation="Wuson_Walk")
+    import numpy as np
+    assert np.allclose(_points(posed), _points(direct), atol=1e-4)
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    bones = vtkXMLPolyDataReader()
+    bones.SetFileName(str(tmp_path / "bones.vtp"))
+    bones.Update()
+    joints = trichart.read_skeleton(glb, time=1.2, animation=1)
+    assert bones.GetOutput().GetNumberOfPoints() == joints.GetNumberOfPoints() > 30
+    assert np.allclose(_points(bones.GetOutput()), _points(joints))
+    r = _cli("pose", glb, "-o", tmp_path / "x.ply")
+    assert r.returncode != 0 and "--time" in r.stderr
+    r = _cli("pose", glb, "--animation", "Dance", "--time", "1")
+    assert r.returncode == 2 and "Wuson_Run' (0)" in r.stderr
