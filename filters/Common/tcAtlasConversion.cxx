@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcAtlasConversion.h"
 
+#include "tcMeshConversion.h"
+
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
 
@@ -239,6 +241,10 @@ void AddProvenance(const tc::Atlas& atlas, vtkFieldData* fd)
   diagonal->SetName(tc::kInputDiagonal);
   diagonal->InsertNextValue(atlas.inputDiagonal);
   fd->AddArray(diagonal);
+  if (!atlas.rig.empty())
+  {
+    SetTextField(fd, tc::kRig, tc::encodeRig(atlas.rig));
+  }
 }
 
 /// The columns of a chart table, each checked for its type, rows and components.
@@ -359,9 +365,15 @@ bool ReadImages(vtkMultiBlockDataSet* images, tc::Atlas& atlas, std::string& err
   return true;
 }
 
-/// Where the atlas came from (optional fields).
+/// Where the atlas came from (optional fields), and its rig.
+/// @throws tc::InputError  for a Rig field that does not decode
 void ReadProvenance(vtkFieldData* fd, tc::Atlas& atlas)
 {
+  const std::string rig = GetTextField(fd, tc::kRig);
+  if (!rig.empty())
+  {
+    atlas.rig = tc::decodeRig(rig);
+  }
   if (auto* source = vtkStringArray::SafeDownCast(fd->GetAbstractArray(tc::kAtlasSource)))
   {
     atlas.source = source->GetNumberOfValues() > 0 ? source->GetValue(0) : std::string();
@@ -429,9 +441,9 @@ bool ToAtlas(vtkDataObject* input, tc::Atlas& atlas, std::string& error)
   {
     return false;
   }
-  ReadProvenance(top->GetFieldData(), atlas);
   try
   {
+    ReadProvenance(top->GetFieldData(), atlas);
     tc::validateAtlas(atlas);
   }
   catch (const tc::InputError& e)

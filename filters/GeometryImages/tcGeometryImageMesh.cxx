@@ -3,6 +3,7 @@
 
 #include "tcAtlasConversion.h"
 #include "tcMeshConversion.h"
+#include "tcSkinData.h"
 
 #include "tc/common/array_names.h"
 #include "tc/gim/geometry_image_mesh.h"
@@ -39,13 +40,36 @@ vtkIntArray* tcGeometryImageMesh::GetChartLevels()
 
 namespace
 {
+/// The atlas attribute Skin (tc::kSkinValues floats a point) as the point arrays SkinIndices
+/// and SkinWeights.
+void AddSkin(const std::vector<float>& values, vtkPointData* pd)
+{
+  tc::SkinWeights skin;
+  const size_t n = values.size() / tc::kSkinValues;
+  for (size_t p = 0; p < n; ++p)
+  {
+    const float* row = &values[tc::kSkinValues * p];
+    for (int k = 0; k < tc::kMaxInfluences; ++k)
+    {
+      skin.joints.push_back(static_cast<int32_t>(row[k]));
+      skin.weights.push_back(row[tc::kMaxInfluences + k]);
+    }
+  }
+  tcvtk::AddSkinArrays(pd, skin);
+}
+
 /// The atlas attributes after Position as point arrays of the rebuilt mesh; Normal becomes its
-/// normals (Normals).
+/// normals (Normals), Skin the skin arrays.
 void AddAtlasAttributes(const tc::Atlas& atlas, const tc::RebuiltMesh& rebuilt, vtkPointData* pd)
 {
   const vtkIdType np = rebuilt.mesh.numPoints();
   for (size_t a = 1; a < atlas.attributes.size(); ++a)
   {
+    if (atlas.attributes[a].name == tc::kAtlasSkin)
+    {
+      AddSkin(rebuilt.attributes[a - 1], pd);
+      continue;
+    }
     vtkNew<vtkFloatArray> array;
     const bool normal = atlas.attributes[a].name == tc::kAtlasNormal;
     array->SetName(normal ? tc::kVertexNormal : atlas.attributes[a].name.c_str());
@@ -145,6 +169,10 @@ int tcGeometryImageMesh::RequestData(
   output->GetCellData()->AddArray(tcvtk::MakeIntArray(tc::kLevel, rebuilt.level));
   output->GetCellData()->SetActiveScalars(tc::kChartId);
   AddBaseColorTexture(atlas, output);
+  if (!atlas.rig.empty())
+  {
+    tcvtk::SetTextField(output->GetFieldData(), tc::kRig, tc::encodeRig(atlas.rig));
+  }
   return 1;
 }
 

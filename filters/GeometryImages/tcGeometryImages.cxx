@@ -5,6 +5,7 @@
 #include "tcMeshConversion.h"
 
 #include "tc/common/array_names.h"
+#include "tc/common/errors.h"
 #include "tc/gim/geometry_images.h"
 
 #include <vtkCellData.h>
@@ -132,6 +133,48 @@ bool ReadResampledArrays(vtkPolyData* input, const std::vector<std::string>& nam
   }
   return true;
 }
+/// The input's skin as the influences attribute Skin (tc::kSkinValues components: 4 joints, 4
+/// weights) and its rig, when it has SkinIndices, SkinWeights and Rig; false, saying what is wrong,
+/// in `error`.
+bool ReadSkin(vtkPolyData* input, std::vector<tc::GeometryImageAttribute>& extra, tc::Rig& rig,
+  std::string& error)
+{
+  vtkPointData* pd = input->GetPointData();
+  const std::string text = tcvtk::GetTextField(input->GetFieldData(), tc::kRig);
+  if (!pd->GetArray(tc::kSkinIndices) || !pd->GetArray(tc::kSkinWeights) || text.empty())
+  {
+    return true;
+  }
+  const vtkIdType np = input->GetNumberOfPoints();
+  std::vector<double> joints, weights;
+  if (!tcvtk::ReadArray(pd, tc::kSkinIndices, np, tc::kMaxInfluences, joints, error) ||
+    !tcvtk::ReadArray(pd, tc::kSkinWeights, np, tc::kMaxInfluences, weights, error))
+  {
+    return false;
+  }
+  try
+  {
+    rig = tc::decodeRig(text);
+  }
+  catch (const tc::InputError& e)
+  {
+    error = e.what();
+    return false;
+  }
+  tc::GeometryImageAttribute skin;
+  skin.name = tc::kAtlasSkin;
+  skin.components = tc::kSkinValues;
+  skin.influences = true;
+  skin.values.resize(static_cast<size_t>(np) * skin.components);
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    double* row = &skin.values[tc::kSkinValues * p];
+    std::copy_n(&joints[tc::kMaxInfluences * p], tc::kMaxInfluences, row);
+    std::copy_n(&weights[tc::kMaxInfluences * p], tc::kMaxInfluences, row + tc::kMaxInfluences);
+  }
+  extra.push_back(std::move(skin));
+  return true;
+}
 } // namespace
 
 int tcGeometryImages::FillInputPortInformation(int, vtkInformation* info)
@@ -171,8 +214,10 @@ int tcGeometryImages::RequestData(
     return 0;
   }
   std::vector<tc::GeometryImageAttribute> extra;
-  if (!ReadResampledArrays(
-        input, ArraysToResample(input, this->ResampledArrays, this->KeepAppearance), extra, error))
+  tc::Rig rig;
+  if (!ReadResampledArrays(input,
+        ArraysToResample(input, this->ResampledArrays, this->KeepAppearance), extra, error) ||
+    (this->KeepSkin && !ReadSkin(input, extra, rig, error)))
   {
     vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;
@@ -207,6 +252,7 @@ int tcGeometryImages::RequestData(
     vtkErrorMacro("Cannot build geometry images: " << error << ".");
     return 0;
   }
+  atlas.rig = std::move(rig);
   const std::string report = tcvtk::GetTextField(input->GetFieldData(), tc::kReaderReport);
   atlas.source = report.substr(0, report.find('\n'));
   tcvtk::FromAtlas(atlas, output);
@@ -223,6 +269,7 @@ void tcGeometryImages::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "LevelRule: " << (this->LevelRule == LEVEL_RULE_AREA ? "Area" : "Error") << "\n";
   os << indent << "StretchIterations: " << this->StretchIterations << "\n";
+  os << indent << "KeepSkin: " << this->KeepSkin << "\n";
   os << indent << "FitSamples: " << this->FitSamples << "\n";
   os << indent << "KeepAppearance: " << this->KeepAppearance << "\n";
   os << indent << "ResampledArrays:";

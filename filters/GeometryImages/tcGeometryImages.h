@@ -121,6 +121,17 @@ public:
   vtkBooleanMacro(KeepAppearance, bool);
   ///@}
 
+  ///@{
+  /// Keep the input's skin (default on): when it has the point arrays SkinIndices and
+  /// SkinWeights and the field Rig (as tcMeshReader gives a skinned scene), resample them as
+  /// the atlas attribute Skin (each sample the union of its source triangle's influences,
+  /// weights interpolated, the 4 largest kept; tc::blendInfluences) and carry the rig, so the
+  /// atlas poses like the input.
+  vtkSetMacro(KeepSkin, bool);
+  vtkGetMacro(KeepSkin, bool);
+  vtkBooleanMacro(KeepSkin, bool);
+  ///@}
+
 protected:
   tcGeometryImages();
   ~tcGeometryImages() override;
@@ -143,6 +154,7 @@ private:
   bool FitSamples = tc::GeometryImageOptions{}.fitSamples;
   std::vector<std::string> ResampledArrays;
   bool KeepAppearance = true;
+  bool KeepSkin = true;
 };
 
 #endif

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcPathTracing.h"
 
+#include "tc/skinning/skin.h"
+
 #include "tcMeshConversion.h"
 
 #include "tc/common/array_names.h"
@@ -9,8 +11,10 @@
 
 #include <vtkCellData.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -29,9 +33,48 @@ tcPathTracing::~tcPathTracing() = default;
 
 namespace
 {
+/// The skin of point `v` (its SkinIndices and SkinWeights).
+tc::PointSkin SkinOf(vtkIntArray* joints, vtkFloatArray* weights, vtkIdType v)
+{
+  tc::PointSkin skin;
+  std::copy_n(joints->GetPointer(tc::kMaxInfluences * v), tc::kMaxInfluences, skin.joints.begin());
+  std::copy_n(
+    weights->GetPointer(tc::kMaxInfluences * v), tc::kMaxInfluences, skin.weights.begin());
+  return skin;
+}
+
+/// The skin of the Steiner points: tc::blendInfluences of their edge's two ends, not the linear
+/// blend of joint ids that InterpolateEdge gave.
+void BlendSteinerSkin(vtkPointData* inPoints, const tc::PatchMesh& patches, vtkPointData* outPoints)
+{
+  auto* joints = vtkIntArray::SafeDownCast(outPoints->GetArray(tc::kSkinIndices));
+  auto* weights = vtkFloatArray::SafeDownCast(outPoints->GetArray(tc::kSkinWeights));
+  auto* inJoints = vtkIntArray::SafeDownCast(inPoints->GetArray(tc::kSkinIndices));
+  auto* inWeights = vtkFloatArray::SafeDownCast(inPoints->GetArray(tc::kSkinWeights));
+  if (!joints || !weights || !inJoints || !inWeights ||
+    joints->GetNumberOfComponents() != tc::kMaxInfluences ||
+    weights->GetNumberOfComponents() != tc::kMaxInfluences)
+  {
+    return;
+  }
+  const vtkIdType nInput = inPoints->GetNumberOfTuples();
+  for (vtkIdType p = nInput; p < joints->GetNumberOfTuples(); ++p)
+  {
+    const size_t s = static_cast<size_t>(p - nInput);
+    const tc::PointSkin ends[2] = { SkinOf(inJoints, inWeights, patches.steinerEdge[2 * s]),
+      SkinOf(inJoints, inWeights, patches.steinerEdge[2 * s + 1]) };
+    const double t = patches.steinerParameter[s];
+    const double blend[2] = { 1.0 - t, t };
+    const tc::PointSkin skin = tc::blendInfluences(2, ends, blend);
+    std::copy(skin.joints.begin(), skin.joints.end(), joints->GetPointer(tc::kMaxInfluences * p));
+    std::copy(
+      skin.weights.begin(), skin.weights.end(), weights->GetPointer(tc::kMaxInfluences * p));
+  }
+}
+
 /// Point data of the split mesh: the input's kept for input points and interpolated along the
-/// input edge for Steiner points (the MAPS arrays are meaningless for those and are dropped),
-/// then InputPointId, SteinerEdge and SteinerParameter.
+/// input edge for Steiner points (the skin blended as influences; the MAPS arrays are meaningless
+/// for those and are dropped), then InputPointId, SteinerEdge and SteinerParameter.
 void CopyPointData(vtkPolyData* input, const tc::PatchMesh& patches, vtkPointData* outPoints)
 {
   const vtkIdType np = patches.mesh.numPoints();
@@ -59,6 +102,7 @@ void CopyPointData(vtkPolyData* input, const tc::PatchMesh& patches, vtkPointDat
     steinerEdge[2 * static_cast<size_t>(p) + 1] = b;
     steinerParameter[static_cast<size_t>(p)] = t;
   }
+  BlendSteinerSkin(inPoints, patches, outPoints);
   outPoints->AddArray(tcvtk::MakeIntArray(tc::kInputPointId, patches.inputPointId));
   outPoints->AddArray(tcvtk::MakeIntTuples(tc::kSteinerEdge, 2, steinerEdge));
   outPoints->AddArray(tcvtk::MakeArray(tc::kSteinerParameter, 1, steinerParameter));

@@ -250,6 +250,8 @@ ReadResult ReadScene(
     if (!scene->skin.empty())
     {
       tcvtk::AddSkinArrays(read.mesh->GetPointData(), scene->skin);
+      tcvtk::SetTextField(read.mesh->GetFieldData(), tc::kRig,
+        tc::encodeRig(tc::Rig{ scene->skeleton, scene->animations }));
     }
     read.sceneReport = SceneReport(*scene);
     AddMeshFileData(read, scene->attributes, scene->texture, scene->warnings);
@@ -451,38 +453,19 @@ std::filesystem::file_time_type Stamp(const std::string& path)
   return ec ? std::filesystem::file_time_type() : stamp;
 }
 
-/// The index of the animation `choice` names in `scene` ("" the first, digits an index), -1
-/// when the scene has none; `error` says why a choice is refused.
+/// The index of the animation `choice` names in `scene` (tc::findAnimation), -1 when it has
+/// none; `error` says why a choice is refused.
 int ChooseAnimation(const tc::Scene& scene, const std::string& choice, std::string& error)
 {
-  const int n = static_cast<int>(scene.animations.size());
-  if (n == 0)
+  try
   {
+    return tc::findAnimation(scene.animations, choice);
+  }
+  catch (const tc::InputError& e)
+  {
+    error = e.what();
     return -1;
   }
-  if (choice.empty())
-  {
-    return 0;
-  }
-  for (int a = 0; a < n; ++a)
-  {
-    if (scene.animations[a].name == choice)
-    {
-      return a;
-    }
-  }
-  if (std::all_of(choice.begin(), choice.end(), [](unsigned char c) { return std::isdigit(c); }) &&
-    choice.size() < 9 && std::stoi(choice) < n)
-  {
-    return std::stoi(choice);
-  }
-  std::string names;
-  for (int a = 0; a < n; ++a)
-  {
-    names += (a ? ", '" : "'") + scene.animations[a].name + "' (" + std::to_string(a) + ")";
-  }
-  error = "the file has no animation '" + choice + "'; its animations are " + names;
-  return -1;
 }
 
 /// Sets the time steps and range of every output port; none when `times` is empty.

@@ -17,7 +17,9 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStaticPointLocator.h>
 
 vtkStandardNewMacro(tcMeshPreparation);
 
@@ -67,13 +69,50 @@ void CopyArrays(
   }
 }
 
-/// The output's arrays: the input's point and cell arrays carried over (through InputPointId
-/// and the input cell of each triangle, `inputCells`), where each element came from, the
+/// `inputPointId` with each point that hole filling added (-1) given the input point of the
+/// nearest point that has one: a filled hole takes its rim's skin weights and texture
+/// coordinates rather than zeros (zero weights would pose it at the origin).
+std::vector<int64_t> NearestInputPoints(vtkPolyData* output, std::vector<int64_t> inputPointId)
+{
+  vtkNew<vtkPoints> kept;
+  std::vector<int64_t> keptInput;
+  for (size_t i = 0; i < inputPointId.size(); ++i)
+  {
+    if (inputPointId[i] >= 0)
+    {
+      kept->InsertNextPoint(output->GetPoint(static_cast<vtkIdType>(i)));
+      keptInput.push_back(inputPointId[i]);
+    }
+  }
+  if (keptInput.size() == inputPointId.size() || keptInput.empty())
+  {
+    return inputPointId;
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(kept);
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(cloud);
+  locator->BuildLocator();
+  for (size_t i = 0; i < inputPointId.size(); ++i)
+  {
+    if (inputPointId[i] < 0)
+    {
+      inputPointId[i] = keptInput[static_cast<size_t>(
+        locator->FindClosestPoint(output->GetPoint(static_cast<vtkIdType>(i))))];
+    }
+  }
+  return inputPointId;
+}
+
+/// The output's arrays: the input's point and cell arrays carried over (through InputPointId,
+/// the nearest input point for a point hole filling added, and the input cell of each
+/// triangle, `inputCells`), where each element came from, the
 /// non-manifold and boundary flags, the components, and the input's field data.
 void AddPreparationArrays(vtkPolyData* input, const tc::PreparationResult& result,
   const std::vector<int64_t>& inputCells, vtkPolyData* output)
 {
-  CopyArrays(input->GetPointData(), output->GetPointData(), result.inputPointId);
+  CopyArrays(
+    input->GetPointData(), output->GetPointData(), NearestInputPoints(output, result.inputPointId));
   CopyArrays(input->GetCellData(), output->GetCellData(), inputCells);
   vtkPointData* pd = output->GetPointData();
   vtkCellData* cd = output->GetCellData();

@@ -18,6 +18,7 @@ from .TriChartCurvature import *  # noqa: F401,F403
 from .TriChartFeatures import *  # noqa: F401,F403
 from .TriChartBaseComplex import *  # noqa: F401,F403
 from .TriChartGeometryImages import *  # noqa: F401,F403
+from .TriChartSkinning import *  # noqa: F401,F403
 import vtkmodules.vtkRenderingCore  # noqa: E402,F401  (before the mapper's module, as above)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
 from .TriChartRendering import *  # noqa: E402,F401,F403
@@ -34,7 +35,8 @@ from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features, 
                        read_atlas, write_atlas, atlas_charts, build, TriChartError,
                        UntraceableError, ResourceError, estimate_memory, set_max_threads,
                        write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS,
-                       base_color_texture, read_skeleton, time_steps, animation_names)
+                       base_color_texture, read_skeleton, time_steps, animation_names,
+                       pose)
 
 
 def plugin_path():

@@ -197,8 +197,13 @@ def cmd_mesh(args):
     check_mesh_file_name(args.output)
     atlas = read_atlas(args.atlas)
     mesh = rebuild(atlas, level=args.level)
+    posed = ""
+    if args.time is not None:
+        from .pipeline import pose
+        mesh = pose(mesh, args.time, animation=args.animation)
+        posed = f", posed at {args.time:g} s"
     print(f"{args.atlas} at level {args.level}: {mesh.GetNumberOfPoints()} points, "
-          f"{mesh.GetNumberOfPolys()} triangles")
+          f"{mesh.GetNumberOfPolys()} triangles{posed}")
     print(f"wrote {write_mesh(mesh, args.output)}")
     return 0
 
@@ -357,9 +362,54 @@ def _plot_eval(figures, path):
             os.unlink(temporary)
 
 
+def _frame_figures(args):
+    """The finest level of a skinned atlas posed at N times evenly over the animation (its
+    rest pose first) against the source posed alike: the Hausdorff distance per frame."""
+    from .TriChartIO import tcArrayNames
+    from .pipeline import (TriChartError, pose, prepare, read_atlas, read_mesh, rebuild,
+                           surface_distance, time_steps)
+
+    atlas = read_atlas(args.atlas)
+    finest = rebuild(atlas)
+    if finest.GetFieldData().GetAbstractArray(tcArrayNames.Rig()) is None:
+        raise TriChartError(f"{args.atlas} is not skinned: --frames poses a skinned atlas")
+    steps = time_steps(args.mesh, animation=args.animation)
+    if not steps:
+        raise TriChartError(f"{args.mesh} has no animation to pose at --frames")
+    frames = [None] + [steps[0] + (steps[-1] - steps[0]) * k / max(1, args.frames - 1)
+                       for k in range(args.frames)]
+    rows = []
+    for t in frames:
+        reference, _ = prepare(read_mesh(args.mesh, time=t, animation=args.animation))
+        mesh = finest if t is None else pose(finest, t, animation=args.animation)
+        _, f = surface_distance(mesh, reference, samples_per_mesh=args.samples)
+        rows.append({"time": t, "hausdorff": f["hausdorff"], "diagonal": f["diagonal"],
+                     "hausdorff_fraction": f["hausdorff"] / (f["diagonal"] or 1.0)})
+    return {"atlas": str(args.atlas), "mesh": str(args.mesh), "rest": rows[0],
+            "frames": rows[1:],
+            "largest_ratio_to_rest": max(r["hausdorff_fraction"] for r in rows[1:]) /
+            (rows[0]["hausdorff_fraction"] or 1.0)}
+
+
+def _print_frames(figures):
+    print(f"{figures['atlas']} posed against {figures['mesh']} (finest level)")
+    print(f"{'time':>10} {'Hausdorff':>12} {'Hausdorff/diag':>15}")
+    for row in [figures["rest"]] + figures["frames"]:
+        when = "rest" if row["time"] is None else f"{row['time']:.4g} s"
+        print(f"{when:>10} {row['hausdorff']:>12.6g} {100 * row['hausdorff_fraction']:>14.4f}%")
+    print(f"largest frame / rest: {figures['largest_ratio_to_rest']:.3f}")
+
+
 def cmd_eval(args):
     from .pipeline import TriChartError
 
+    if args.frames:
+        figures = _frame_figures(args)
+        if args.json:
+            print(json.dumps(figures, indent=2))
+        else:
+            _print_frames(figures)
+        return 0
     if args.plot and not args.plot.lower().endswith(".png"):
         raise TriChartError(f"cannot write '{args.plot}': --plot writes a PNG, name it .png")
     figures = _eval_figures(args)
@@ -545,6 +595,9 @@ def _parser(d):
     p.add_argument("--level", type=int, default=d.rebuild.GetLevel(),
                    help=f"level of every chart, capped by its finest (default "
                         f"{d.rebuild.GetLevel()}: finest)")
+    p.add_argument("--time", type=float, help="a skinned atlas: pose it at this time (seconds)")
+    p.add_argument("--animation", default="", help="with --time: the animation (name or index; "
+                                                   "default the first)")
     p.add_argument("-o", "--output", required=True,
                    help="output mesh, in the format its extension names: " + formats)
     _add_export_parser(sub, d)
@@ -566,6 +619,11 @@ def _parser(d):
     p.add_argument("--json", action="store_true",
                    help="print every figure as JSON instead of the table")
     p.add_argument("--plot", metavar="PNG", help="also plot the errors against triangles")
+    p.add_argument("--frames", type=int, default=0, metavar="N",
+                   help="a skinned atlas: the finest level's error posed at N times evenly "
+                        "over the animation, against the mesh posed alike")
+    p.add_argument("--animation", default="", help="with --frames: the animation (name or "
+                                                   "index; default the first)")
     p = sub.add_parser("prepare", help="clean a mesh and write it")
     p.add_argument("mesh")
     p.add_argument("-o", "--output", required=True,

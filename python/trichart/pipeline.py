@@ -9,7 +9,7 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
-from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures,
+from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures, TriChartSkinning,
                TriChartGeometryImages, TriChartIO, TriChartPreparation)
 
 
@@ -248,6 +248,18 @@ def time_steps(path, animation=None):
     info = reader.GetOutputInformation(0)
     key = vtkStreamingDemandDrivenPipeline.TIME_STEPS()
     return tuple(info.Get(key)) if info.Has(key) else ()
+
+
+def pose(mesh, time, animation=None, progress=None):
+    """tcLinearBlendSkinning: `mesh` (with SkinIndices, SkinWeights and the Rig field: a
+    skinned scene read with bind_pose=True, or a rebuilt skinned atlas) posed at `time`
+    seconds of `animation` (name or index; the first by default)."""
+    f = TriChartSkinning.tcLinearBlendSkinning()
+    f.SetInputData(mesh)
+    f.SetTime(float(time))
+    f.SetAnimation("" if animation is None else str(animation))
+    run(f, "pose", progress)
+    return _output(f)
 
 
 def animation_names(path):

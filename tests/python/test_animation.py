@@ -144,3 +144,53 @@ def test_the_command_line_lists_animations_and_writes_posed_meshes(shared_data, 
     assert r.returncode != 0 and "--time" in r.stderr
     r = _cli("pose", glb, "--animation", "Dance", "--time", "1")
     assert r.returncode == 2 and "Wuson_Run' (0)" in r.stderr
+
+
+def test_a_skinned_atlas_keeps_the_skin_and_poses_like_the_input(shared_data, tmp_path):
+    """The snake built into an atlas: the Skin attribute and the rig survive the file, the
+    rebuilt mesh carries SkinIndices / SkinWeights, and every rebuilt point that is an input
+    vertex (the charts' corners) poses exactly where the input's vertex does, at every time."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    fbx = shared_data / "skinned" / "snake_fbx" / "animation_with_skeleton.fbx"
+    trichart.build(fbx, tmp_path / "snake.exr")
+    atlas = trichart.read_atlas(tmp_path / "snake.exr")
+    finest = trichart.rebuild(atlas)
+    weights = vtk_to_numpy(finest.GetPointData().GetArray(tcArrayNames.SkinWeights()))
+    joints = vtk_to_numpy(finest.GetPointData().GetArray(tcArrayNames.SkinIndices()))
+    assert weights.shape[1] == 4 and np.all(weights >= 0)
+    assert joints.min() >= 0 and joints.max() < 17
+    assert _field_text(finest, tcArrayNames.Rig()) is not None
+
+    rest, _ = trichart.prepare(trichart.read_mesh(fbx))
+    p, q = _points(finest), _points(rest)
+    diagonal = np.linalg.norm(q.max(axis=0) - q.min(axis=0))
+    nearest = np.sqrt(((p[:, None, :] - q[None, :, :]) ** 2).sum(axis=2))
+    match = nearest.argmin(axis=1)
+    on_vertex = nearest.min(axis=1) < 3e-5 * diagonal  # the lattice step: about 1e-5
+    assert on_vertex.sum() >= 100
+    duration = trichart.time_steps(fbx)[-1]
+    for t in (0.25 * duration, 0.6 * duration, duration):
+        posed = _points(trichart.pose(finest, t))
+        reference = _points(trichart.read_mesh(fbx, time=t, animation=0))
+        reference_rest = _points(trichart.pose(rest, t))
+        assert np.allclose(posed[on_vertex], reference_rest[match[on_vertex]],
+                           atol=1e-4 * diagonal)
+        assert len(reference) == 2464  # the reader's points, before the merge
+    # The command line: the posed finest level per frame, and a posed mesh at one time.
+    import json
+    r = _cli("eval", fbx, tmp_path / "snake.exr", "--frames", "3", "--json")
+    assert r.returncode == 0, r.stderr
+    figures = json.loads(r.stdout)
+    assert [f["time"] for f in figures["frames"]] == pytest.approx([0, duration / 2, duration])
+    assert figures["rest"]["hausdorff_fraction"] < 0.002
+    assert all(f["hausdorff_fraction"] < 0.02 for f in figures["frames"])
+    r = _cli("mesh", tmp_path / "snake.exr", "--time", str(duration), "-o", tmp_path / "end.vtp")
+    assert r.returncode == 0, r.stderr
+    end = trichart.read_mesh(tmp_path / "end.vtp")
+    assert np.allclose(_points(end), _points(trichart.pose(finest, duration)), atol=1e-6 * diagonal)
+    r = _cli("eval", fbx, fbx.parent.parent / "wuson" / "wuson.glb", "--frames", "3")
+    assert r.returncode == 2 and "atlas" in r.stderr
+    with pytest.raises(trichart.TriChartError, match="SkinIndices"):
+        trichart.pose(trichart.prepare(trichart.read_mesh(
+            shared_data / "sequences" / "snake_closed_21f" / "f_0000.obj"))[0], 0.5)

@@ -459,6 +459,8 @@ void expectBitIdentical(const tc::Atlas& expected, const tc::Atlas& actual)
     EXPECT_TRUE(sameBits(r.box, e.box)) << "chart " << c;
     EXPECT_TRUE(sameBits(r.levelError, e.levelError)) << "chart " << c;
   }
+  // The rig's text writes every double in its shortest exact form: equal text, equal bits.
+  EXPECT_EQ(tc::encodeRig(actual.rig), tc::encodeRig(expected.rig));
   ASSERT_EQ(actual.textures.size(), expected.textures.size());
   for (size_t t = 0; t < expected.textures.size(); ++t)
   {
@@ -930,7 +932,7 @@ TEST_F(AtlasIo, FileFollowsTheDocumentedLayout)
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasLength").value(),
     static_cast<int>(text.size()));
   EXPECT_EQ(first.typedAttribute<Imf::IntAttribute>("trichartAtlasCrc32").value(), crc32Of(text));
-  EXPECT_EQ(tc::kAtlasFileVersion, 5);
+  EXPECT_EQ(tc::kAtlasTextureVersion, 5);
   const Json metadata = Json::parse(text);
   for (const Json& image : metadata["images"])
   {
@@ -2210,6 +2212,122 @@ TEST_F(AtlasIo, RefusesDamagedTextures)
     });
   EXPECT_TRUE(mentions(error, "channel 'RGBA' is not full-resolution 32-bit unsigned integer"))
     << error;
+}
+
+// ------------------------------------------------------------------------------------------
+// Version 6: the rig of a skinned atlas
+
+namespace
+{
+/// `atlas` with a Skin attribute (joints of a 3-joint skeleton and weights hashed from the
+/// sample's position, so that the copies of a shared side agree) and a rig whose
+/// doubles have every bit set somewhere (hashed), with one animation of each kind of key.
+tc::Atlas withRig(tc::Atlas atlas)
+{
+  atlas.attributes.push_back({ tc::kAtlasSkin, tc::kSkinValues });
+  for (tc::AtlasImage& image : atlas.images)
+  {
+    std::vector<float> skin;
+    for (size_t t = 0; t < image.data[0].size() / 3; ++t)
+    {
+      uint32_t bits[3];
+      std::memcpy(bits, &image.data[0][3 * t], sizeof bits);
+      const uint64_t h = hashOf({ bits[0], bits[1], bits[2] });
+      for (int k = 0; k < tc::kMaxInfluences; ++k)
+      {
+        skin.push_back(static_cast<float>((h + k) % 3));
+      }
+      for (int k = 0; k < tc::kMaxInfluences; ++k)
+      {
+        skin.push_back(static_cast<float>((h >> (8 * k)) % 1000) / 1000.0f);
+      }
+    }
+    image.data.push_back(std::move(skin));
+  }
+  const auto number = [](int64_t a, int64_t b) {
+    return static_cast<double>(hashOf({ a, b })) / 3.0e18 - 1.7;
+  };
+  for (int32_t j = 0; j < 3; ++j)
+  {
+    tc::Joint joint;
+    joint.name = "joint " + std::to_string(j);
+    joint.parent = j - 1;
+    for (int k = 0; k < 16; ++k)
+    {
+      joint.restLocal[k] = number(j, k);
+      joint.inverseBind[k] = number(j, 100 + k);
+    }
+    atlas.rig.skeleton.joints.push_back(joint);
+  }
+  tc::Animation animation;
+  animation.name = "wave";
+  animation.duration = number(7, 7) + 3.0;
+  animation.ticksPerSecond = 24;
+  tc::JointTrack track;
+  track.joint = 2;
+  track.positionTimes = { 0.0, 0.1 + number(1, 1) / 10 };
+  track.positions = { { number(2, 1), number(2, 2), number(2, 3) }, { 1, 2, 3 } };
+  track.rotationTimes = { 0.25 };
+  track.rotations = { { number(3, 0), number(3, 1), number(3, 2), number(3, 3) } };
+  animation.tracks.push_back(track);
+  atlas.rig.animations.push_back(animation);
+  return atlas;
+}
+} // namespace
+
+TEST_F(AtlasIo, ARigRoundTripsBitExactlyAsVersion6)
+{
+  const tc::Atlas atlas = withRig(latticeAtlas());
+  ASSERT_NO_THROW(tc::validateAtlas(atlas));
+  const std::string path = file("rig.exr");
+  tc::writeAtlas(atlas, path);
+  const tc::Atlas back = tc::readAtlas(path);
+  expectBitIdentical(atlas, back);
+  ASSERT_EQ(back.rig.skeleton.joints.size(), 3u);
+  EXPECT_EQ(std::memcmp(back.rig.skeleton.joints[2].inverseBind.data(),
+              atlas.rig.skeleton.joints[2].inverseBind.data(), 16 * sizeof(double)),
+    0);
+  const Json metadata = metadataOf(loadParts(path));
+  EXPECT_EQ(metadata["version"], 6);
+  EXPECT_FALSE(metadata.contains("textures"));
+  // With textures too, still version 6.
+  tc::writeAtlas(withTextures(atlas), file("rig_textures.exr"));
+  expectBitIdentical(withTextures(atlas), tc::readAtlas(file("rig_textures.exr")));
+}
+
+TEST_F(AtlasIo, RefusesADamagedRig)
+{
+  const std::string good = file("rig.exr");
+  tc::writeAtlas(withRig(latticeAtlas()), good);
+  const std::string parent = damagedCopyError(
+    good, metadataEdit([](Json& metadata) { metadata["rig"]["joints"][1]["parent"] = 2; }));
+  EXPECT_TRUE(mentions(parent, "joints[1].parent")) << parent;
+  const std::string track = damagedCopyError(good,
+    metadataEdit(
+      [](Json& metadata) { metadata["rig"]["animations"][0]["tracks"][0]["joint"] = 9; }));
+  EXPECT_TRUE(mentions(track, "joint")) << track;
+  const std::string gone =
+    damagedCopyError(good, metadataEdit([](Json& metadata) { metadata.erase("rig"); }));
+  EXPECT_TRUE(mentions(gone, "rig")) << gone;
+}
+
+TEST(AtlasSkin, ValidationNamesWhatIsWrong)
+{
+  tc::Atlas atlas = withRig(latticeAtlas());
+  ASSERT_NO_THROW(tc::validateAtlas(atlas));
+  tc::Atlas noRig = atlas;
+  noRig.rig = {};
+  EXPECT_THROW(tc::validateAtlas(noRig), tc::InputError);
+  tc::Atlas badJoint = atlas;
+  badJoint.images[0].data.back()[0] = 3.0f; // a skeleton of 3 joints: 0 .. 2
+  EXPECT_THROW(tc::validateAtlas(badJoint), tc::InputError);
+  tc::Atlas oneSide = atlas;
+  // A shared side whose two copies of the skin differ: the corner of chart 0 is shared.
+  const float* corner = tc::atlasSample(oneSide, 0,
+    static_cast<int32_t>(atlas.attributes.size() - 1), oneSide.charts[0].maxLevel, 0, 0);
+  const size_t at = static_cast<size_t>(corner - oneSide.images[0].data.back().data());
+  oneSide.images[0].data.back()[at + 4] += 0.25f;
+  EXPECT_THROW(tc::validateAtlas(oneSide), tc::InputError);
 }
 
 TEST(AtlasTextures, ValidationNamesWhatIsWrong)

@@ -114,3 +114,44 @@ TEST(Skin, KeyTimesAndBadSizes)
     tc::skinPoints({ 0, 0, 0, 1, 1, 1 }, skin, { tc::identityMatrix() }), tc::InputError);
   EXPECT_THROW(tc::skinPoints({ 0, 0, 0 }, skin, { tc::identityMatrix() }), tc::InputError);
 }
+
+TEST(Skin, BlendedInfluencesAreTheUnionOfJointsWithInterpolatedWeights)
+{
+  tc::PointSkin a, b, c;
+  a.joints = { 2, 7, 0, 0 };
+  a.weights = { 0.75f, 0.25f, 0.0f, 0.0f };
+  b.joints = { 7, 3, 0, 0 };
+  b.weights = { 0.5f, 0.5f, 0.0f, 0.0f };
+  // Two points, at most 4 joints in all: the linear blend of the weights, by joint.
+  const tc::PointSkin ab[2] = { a, b };
+  const double half[2] = { 0.5, 0.5 };
+  const tc::PointSkin m = tc::blendInfluences(2, ab, half);
+  EXPECT_EQ(m.joints, (std::array<int32_t, 4>{ 2, 7, 3, 0 })); // a tie goes to the lower id
+  EXPECT_FLOAT_EQ(m.weights[0], 0.375f);
+  EXPECT_FLOAT_EQ(m.weights[1], 0.375f);
+  EXPECT_FLOAT_EQ(m.weights[2], 0.25f);
+  EXPECT_EQ(m.weights[3], 0.0f);
+  // Three points with six joints: the 4 largest, scaled to the interpolated total (1).
+  c.joints = { 4, 5, 6, 0 };
+  c.weights = { 0.5f, 0.3f, 0.2f, 0.0f };
+  const tc::PointSkin abc[3] = { a, b, c };
+  const double third[3] = { 0.4, 0.3, 0.3 };
+  const tc::PointSkin n = tc::blendInfluences(3, abc, third);
+  EXPECT_EQ(n.joints[0], 2); // 0.4 x 0.75 = 0.30
+  EXPECT_EQ(n.joints[1], 7); // 0.10 + 0.15 = 0.25
+  double sum = 0.0;
+  for (const float w : n.weights)
+  {
+    sum += w;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-6);
+  for (const int32_t j : n.joints)
+  {
+    EXPECT_TRUE(j == 2 || j == 7 || j == 3 || j == 4 || j == 5 || j == 6) << j; // never a blend
+  }
+  // A corner keeps its own skin.
+  const double one[1] = { 1.0 };
+  const tc::PointSkin own = tc::blendInfluences(1, &a, one);
+  EXPECT_EQ(own.joints[0], 2);
+  EXPECT_EQ(own.weights[0], 0.75f);
+}

@@ -91,6 +91,47 @@ void checkTextures(const Atlas& atlas)
   }
 }
 
+/// A Skin attribute of kSkinValues components exactly when the rig has joints.
+void checkSkinLayout(const Atlas& atlas)
+{
+  const int32_t skin = findAttribute(atlas, kAtlasSkin);
+  if ((skin >= 0) != !atlas.rig.empty())
+  {
+    fail(skin >= 0 ? std::string("it has a ") + kAtlasSkin + " attribute but no skeleton"
+                   : std::string("it has a skeleton but no ") + kAtlasSkin + " attribute");
+  }
+  if (skin >= 0 && atlas.attributes[static_cast<size_t>(skin)].components != kSkinValues)
+  {
+    fail(std::string("its ") + kAtlasSkin + " attribute needs " + std::to_string(kSkinValues) +
+      " components (4 joints, 4 weights)");
+  }
+}
+
+/// Every chart texel's skin: 4 integer joints of the skeleton, 4 finite weights >= 0.
+void checkSkinData(const Atlas& atlas)
+{
+  const int32_t skin = findAttribute(atlas, kAtlasSkin);
+  const double joints = static_cast<double>(atlas.rig.skeleton.joints.size());
+  for (size_t k = 0; skin >= 0 && k < atlas.images.size(); ++k)
+  {
+    const float* values = atlas.images[k].data[static_cast<size_t>(skin)].data();
+    forEachImageSample(atlas, k,
+      [&](int32_t c, int32_t, int32_t, int32_t, size_t texel)
+      {
+        const float* v = values + kSkinValues * texel;
+        for (int r = 0; r < kMaxInfluences; ++r)
+        {
+          if (!(v[r] >= 0 && v[r] < joints && std::floor(v[r]) == v[r]) ||
+            !(v[kMaxInfluences + r] >= 0 && std::isfinite(v[kMaxInfluences + r])))
+          {
+            fail(chartName(static_cast<size_t>(c)) + " has a skin sample whose joint is no " +
+              "joint of the skeleton or whose weight is negative or not finite");
+          }
+        }
+      });
+  }
+}
+
 /// One image per mip step of the finest chart, each of a size a GPU texture can have.
 void checkImageSizes(const Atlas& atlas)
 {
@@ -256,10 +297,12 @@ void checkImageData(const Atlas& atlas)
 
 /// Side k of chart c: sample t equals sample N - t of the neighbour's side at every common
 /// level, and sample 2t of the next finer level of the same chart (the dyadic subset property
-/// stitching relies on). Positions only: a side along a feature may keep one-sided normals.
+/// stitching relies on). Positions, and the skin so that both charts pose a side alike; not the
+/// normals: a side along a feature may keep one-sided normals.
 void checkSharedSide(const Atlas& atlas, size_t c, int k)
 {
   const AtlasChart& chart = atlas.charts[c];
+  const int32_t skin = findAttribute(atlas, kAtlasSkin);
   const int32_t ci = static_cast<int32_t>(c);
   const int32_t nb = chart.neighborChart[k];
   const int32_t ns = chart.neighborSide[k];
@@ -274,7 +317,10 @@ void checkSharedSide(const Atlas& atlas, size_t c, int k)
       if (d <= common)
       {
         const std::array<int32_t, 2> nij = sidePoint(ns, n - t, n);
-        if (!samePosition(p, atlasSample(atlas, nb, 0, d, nij[0], nij[1])))
+        if (!samePosition(p, atlasSample(atlas, nb, 0, d, nij[0], nij[1])) ||
+          (skin >= 0 &&
+            std::memcmp(atlasSample(atlas, ci, skin, d, ij[0], ij[1]),
+              atlasSample(atlas, nb, skin, d, nij[0], nij[1]), kSkinValues * sizeof(float)) != 0))
         {
           fail(chartName(c) + " side " + std::to_string(k) + " level " + std::to_string(d) +
             " sample " + std::to_string(t) + " differs from " + chartName(nb) + "'s copy of it");
@@ -311,6 +357,7 @@ void validateAtlasLayout(const Atlas& atlas)
 {
   checkAttributes(atlas);
   checkTextures(atlas);
+  checkSkinLayout(atlas);
   if (atlas.charts.empty())
   {
     fail("it has no chart");
@@ -327,6 +374,7 @@ void validateAtlas(const Atlas& atlas)
 {
   validateAtlasLayout(atlas);
   checkImageData(atlas);
+  checkSkinData(atlas);
   for (size_t t = 0; t < atlas.textures.size(); ++t)
   {
     const AtlasTexture& texture = atlas.textures[t];

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "gim/geometry_images_input.h"
 
+#include "tc/skinning/skin.h"
+
 #include "tc/common/errors.h"
 
 #include <algorithm>
@@ -347,6 +349,11 @@ void checkExtraAttributes(
       throw InputError(kWhere + "extra attribute \"" + x.name + "\" needs 1 .. " +
         num(kMaxComponents) + " components and #points x components (" + num(numPoints) + " x " +
         num(x.components) + ") values; it has " + num(x.values.size()));
+    }
+    if (x.influences && (x.components != kSkinValues || !x.cornerValues.empty()))
+    {
+      throw InputError(kWhere + "the influences \"" + x.name + "\" need " + num(kSkinValues) +
+        " components (4 joints, 4 weights) and no corner values");
     }
     if (!x.cornerValues.empty() &&
       static_cast<int64_t>(x.cornerValues.size()) != 3 * numTriangles * x.components)

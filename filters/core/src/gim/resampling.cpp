@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "gim/resampling.h"
 
+#include "tc/skinning/skin.h"
+
 #include "gim/geometry_images_vec3.h"
 #include "gim/uv_locator.h"
 
@@ -52,6 +54,26 @@ void normalizeRows(std::vector<double>& v)
       v[i + 2] /= len;
     }
   }
+}
+
+/// The skin (tc::blendInfluences) of `count` points of the influences attribute `x` with
+/// barycentric weights `w`, written as kSkinValues floats (joints, weights) to `out`.
+void blendedInfluences(
+  const GeometryImageAttribute& x, int count, const int64_t* points, const double* w, float* out)
+{
+  PointSkin skins[3];
+  for (int p = 0; p < count; ++p)
+  {
+    const double* row = &x.values[static_cast<size_t>(points[p]) * kSkinValues];
+    for (int k = 0; k < kMaxInfluences; ++k)
+    {
+      skins[p].joints[k] = static_cast<int32_t>(row[k]);
+      skins[p].weights[k] = static_cast<float>(row[kMaxInfluences + k]);
+    }
+  }
+  const PointSkin skin = blendInfluences(count, skins, w);
+  std::transform(skin.joints.begin(), skin.joints.end(), out, [](int32_t j) { return float(j); });
+  std::copy(skin.weights.begin(), skin.weights.end(), out + kMaxInfluences);
 }
 
 /// Index of point v in the ascending points of a patch that holds it.
@@ -172,6 +194,13 @@ void samplePathAt(const SamplingInput& in, int32_t e, const std::vector<double>&
   {
     const int32_t nComp = in.extra[at].components;
     const std::vector<double>& values = in.extra[at].values;
+    if (in.extra[at].influences)
+    {
+      const int64_t ends[2] = { a, b };
+      const double w[2] = { 1.0 - tau, tau };
+      blendedInfluences(in.extra[at], 2, ends, w, &out[in.S.offset[at + 2]]);
+      continue;
+    }
     for (int32_t x = 0; x < nComp; ++x)
     {
       out[in.S.offset[at + 2] + x] =
@@ -364,6 +393,12 @@ void interpolateSample(const SamplingInput& in, const PatchParameterization& p,
   {
     const GeometryImageAttribute& attribute = in.extra[at];
     const int32_t nComp = attribute.components;
+    if (attribute.influences)
+    {
+      const int64_t corners[3] = { p.points[tri[0]], p.points[tri[1]], p.points[tri[2]] };
+      blendedInfluences(attribute, 3, corners, hit.w, &out[in.S.offset[at + 2]]);
+      continue;
+    }
     for (int32_t x = 0; x < nComp; ++x)
     {
       double v = 0.0;

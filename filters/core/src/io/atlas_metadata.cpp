@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The JSON chart table of the atlas file: the one translation unit that includes nlohmann/json.
+// The JSON chart table of the atlas file (the rig in it is src/skinning/rig_json.cpp's).
 #include "io/atlas_metadata.h"
 
 #include "tc/common/errors.h"
@@ -227,7 +227,7 @@ Json checkedJson(const std::string& path, const StoredMetadata& stored)
       std::to_string(version->get<int64_t>()) + " but this TriChart reads versions up to " +
       std::to_string(kAtlasFileVersion) + "; update TriChart to read it");
   }
-  // Version 1 stored the text plainly, versions 2 to 5 compressed: anything else is not our
+  // Version 1 stored the text plainly, versions 2 to 6 compressed: anything else is not our
   // writer's.
   if (stored.compressed != (version->get<int64_t>() >= 2))
   {
@@ -445,9 +445,10 @@ std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
 {
   Json root;
   root["format"] = kFormatName;
-  root["version"] = !atlas.textures.empty() ? kAtlasFileVersion
-    : lattice                               ? kAtlasLatticeVersion
-                                            : kAtlasFloatVersion;
+  root["version"] = !atlas.rig.empty() ? kAtlasFileVersion
+    : !atlas.textures.empty()          ? kAtlasTextureVersion
+    : lattice                          ? kAtlasLatticeVersion
+                                       : kAtlasFloatVersion;
   root["source"] = atlas.source;
   root["inputPoints"] = atlas.inputPoints;
   root["inputTriangles"] = atlas.inputTriangles;
@@ -480,6 +481,10 @@ std::string metadataJson(const Atlas& atlas, const AtlasChecksums& crcs,
       root["textures"].push_back({ { "name", texture.name }, { "source", texture.source },
         { "width", texture.width }, { "height", texture.height }, { "crc32", textureCrcs[t] } });
     }
+  }
+  if (!atlas.rig.empty())
+  {
+    root["rig"] = Json::parse(encodeRig(atlas.rig));
   }
   root["charts"] = Json::array();
   for (const AtlasChart& chart : atlas.charts)
@@ -598,6 +603,20 @@ void checkMetadata(const std::string& path, const StoredMetadata& stored)
   checkedJson(path, stored);
 }
 
+/// "rig" (version 6): the skeleton and animations of a skinned atlas, as tc::encodeRig writes
+/// them.
+void parseRig(const MetadataReader& in, const Json& root, Atlas& atlas)
+{
+  try
+  {
+    atlas.rig = decodeRig(in.member(root, "rig", "the root").dump());
+  }
+  catch (const InputError& e)
+  {
+    in.fail(std::string("has a rig that does not read: ") + e.what());
+  }
+}
+
 AtlasMetadata parseMetadata(const std::string& path, const StoredMetadata& stored)
 {
   const Json root = checkedJson(path, stored);
@@ -615,9 +634,14 @@ AtlasMetadata parseMetadata(const std::string& path, const StoredMetadata& store
   parseAttributes(in, root, atlas);
   parseImages(in, root, out);
   const int64_t version = root["version"].get<int64_t>();
-  if (version >= 5)
+  // Version 5 always lists its textures; version 6 when it has any.
+  if (version == 5 || (version >= 6 && root.contains("textures")))
   {
     parseTextures(in, root, out);
+  }
+  if (version >= 6)
+  {
+    parseRig(in, root, atlas);
   }
   // Version 4 codes Position and Normal always, version 5 when it has a lattice.
   if (version == 4 || (version >= 5 && root.contains("lattice")))

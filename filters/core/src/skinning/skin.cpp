@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <set>
 
@@ -156,6 +158,80 @@ void addSkinPoint(
     skin.joints.push_back(used ? influences[k].first : 0);
     skin.weights.push_back(used ? static_cast<float>(influences[k].second / total) : 0.0f);
   }
+}
+
+int findAnimation(const std::vector<Animation>& animations, const std::string& choice)
+{
+  const int n = static_cast<int>(animations.size());
+  if (n == 0)
+  {
+    return -1;
+  }
+  if (choice.empty())
+  {
+    return 0;
+  }
+  for (int a = 0; a < n; ++a)
+  {
+    if (animations[a].name == choice)
+    {
+      return a;
+    }
+  }
+  if (choice.size() < 9 &&
+    std::all_of(choice.begin(), choice.end(), [](unsigned char c) { return std::isdigit(c); }) &&
+    std::stoi(choice) < n)
+  {
+    return std::stoi(choice);
+  }
+  std::string names;
+  for (int a = 0; a < n; ++a)
+  {
+    names += (a ? ", '" : "'") + animations[a].name + "' (" + std::to_string(a) + ")";
+  }
+  throw InputError("there is no animation '" + choice + "'; the animations are " + names);
+}
+
+PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend)
+{
+  std::array<std::pair<int32_t, double>, 3 * kMaxInfluences> merged{};
+  int n = 0;
+  double total = 0.0;
+  for (int p = 0; p < count; ++p)
+  {
+    for (int k = 0; k < kMaxInfluences; ++k)
+    {
+      const double w = blend[p] * skins[p].weights[k];
+      if (!(w > 0.0))
+      {
+        continue;
+      }
+      total += w;
+      int slot = 0;
+      while (slot < n && merged[slot].first != skins[p].joints[k])
+      {
+        ++slot;
+      }
+      merged[slot].first = skins[p].joints[k];
+      merged[slot].second += w;
+      n = std::max(n, slot + 1);
+    }
+  }
+  std::sort(merged.begin(), merged.begin() + n,
+    [](const auto& a, const auto& b)
+    { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+  double kept = 0.0;
+  for (int k = 0; k < std::min(n, kMaxInfluences); ++k)
+  {
+    kept += merged[k].second;
+  }
+  PointSkin out;
+  for (int k = 0; k < std::min(n, kMaxInfluences); ++k)
+  {
+    out.joints[k] = merged[k].first;
+    out.weights[k] = static_cast<float>(merged[k].second * (total / kept));
+  }
+  return out;
 }
 
 std::vector<Matrix4> jointGlobals(

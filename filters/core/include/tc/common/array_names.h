@@ -117,6 +117,9 @@ constexpr const char* kInverseBindMatrices = "InverseBindMatrices";
 /// skeleton point: double, 16 components, row-major: the joint's frame in the scene at the
 /// output's time
 constexpr const char* kJointTransforms = "JointTransforms";
+/// field: string, JSON (tc::encodeRig): the skeleton and animations of a skinned mesh, carried
+/// from the reader through every stage into the atlas
+constexpr const char* kRig = "Rig";
 /// field: string, the animation the output is posed by ("" in the rest pose)
 constexpr const char* kAnimationName = "AnimationName";
 /// point: float (u, v), the active TCoords; v = 0 at the image's bottom row (OpenGL / VTK)

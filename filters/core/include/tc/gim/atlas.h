@@ -22,6 +22,8 @@
 /// The file an atlas is stored in (tc/io/atlas_io.h) is described in docs/atlas-format.md.
 #pragma once
 
+#include "tc/skinning/skin.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -34,6 +36,10 @@ constexpr const char* kAtlasPosition = "Position";
 constexpr const char* kAtlasNormal = "Normal";
 /// The attribute a texture is looked up with: (u, v), v = 0 at a texture's bottom row.
 constexpr const char* kAtlasTextureCoordinates = "TextureCoordinates";
+/// The skin of a skinned atlas, tc::kSkinValues (8) components: the sample's 4 joints
+/// (integers, indices into Atlas::rig's skeleton) and their 4 weights (tc::blendInfluences of
+/// the input's skin).
+constexpr const char* kAtlasSkin = "Skin";
 /// The name of the input's base-colour texture among Atlas::textures.
 constexpr const char* kAtlasBaseColorTexture = "BaseColor";
 
@@ -92,7 +98,8 @@ struct Atlas
   std::vector<AtlasImage> images;         ///< image k = 0 (finest) .. max maxLevel
   std::vector<AtlasChart> charts;         ///< chart c = base face c = PatchId c
   std::vector<AtlasTexture> textures;     ///< none, or the textures the attributes refer to
-  int64_t inputPoints = 0;                ///< of the mesh the atlas was built from
+  Rig rig; ///< the skeleton and animations that pose the Skin attribute (empty: not skinned)
+  int64_t inputPoints = 0; ///< of the mesh the atlas was built from
   int64_t inputTriangles = 0;
   double inputDiagonal = 0.0; ///< bounding-box diagonal of that mesh
   std::string source;         ///< what it was built from (file name), free text
@@ -212,7 +219,9 @@ void forEachImageSample(const Atlas& atlas, size_t k, F&& f)
 int32_t findAttribute(const Atlas& atlas, const std::string& name);
 
 /// Checks the layout and every invariant above (sizes, texels inside their image and not shared
-/// by two charts, neighbour symmetry, bit-identical shared sides and corners) and the textures.
+/// by two charts, neighbour symmetry, bit-identical shared sides and corners; a Skin attribute
+/// identical on both sides too, its joints integers of the rig's skeleton, its weights finite
+/// and not negative) and the textures.
 /// @throws InputError naming the first chart and rule that fail
 void validateAtlas(const Atlas& atlas);
 
@@ -220,7 +229,8 @@ void validateAtlas(const Atlas& atlas);
 /// neighbours and partners, every chart's grid inside its images and no texel shared by two
 /// charts (image data may be empty), and the textures: each named once, 1 to 2^16 texels wide
 /// and high (their bytes may be empty; validateAtlas counts them), and only beside a
-/// TextureCoordinates attribute of 2 components. What makes atlasTexel safe to index an image with.
+/// TextureCoordinates attribute of 2 components; a Skin attribute of kSkinValues components
+/// exactly when the rig has a skeleton. What makes atlasTexel safe to index an image with.
 /// @throws InputError naming the first chart and rule that fail
 void validateAtlasLayout(const Atlas& atlas);
 } // namespace tc

@@ -145,6 +145,11 @@ struct GeometryImageAttribute
   /// empty: where given, a sample takes the values of the triangles of its own chart, so that
   /// the two charts of a side along a texture seam each keep their own texture coordinates.
   std::vector<double> cornerValues;
+  /// Skin influences (tc::kSkinValues components: 4 joint ids, then their 4 weights;
+  /// tc::PointSkin): a sample between points takes tc::blendInfluences of theirs (the union of
+  /// their joints, weights interpolated, the 4 largest kept) instead of a linear blend, which
+  /// would blend joint ids. No corner values.
+  bool influences = false;
 };
 
 /// The parameterization of one patch onto the right triangle.

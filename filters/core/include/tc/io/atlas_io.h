@@ -19,9 +19,12 @@
 namespace tc
 {
 /// The newest version of the atlas file format, which readAtlas reads with all older ones and
-/// writeAtlas writes for an atlas with textures: version 4 or 3 (lattice or not) plus a part
-/// per texture.
-constexpr int kAtlasFileVersion = 5;
+/// writeAtlas writes for a skinned atlas: version 5 plus the rig (skeleton and animations) in
+/// the metadata.
+constexpr int kAtlasFileVersion = 6;
+/// The version writeAtlas writes for an atlas with textures and no rig: version 4 or 3
+/// (lattice or not) plus a part per texture.
+constexpr int kAtlasTextureVersion = 5;
 /// The version writeAtlas writes for an atlas without textures whose every position and normal
 /// decodes exactly from its lattice code, as in every atlas the pipeline builds.
 constexpr int kAtlasLatticeVersion = 4;

@@ -91,6 +91,15 @@ struct SkinWeights
   bool empty() const { return joints.empty(); }
 };
 
+/// The skin of one point (SkinWeights), as one record; the atlas stores it as kSkinValues
+/// floats (the joints, then the weights).
+struct PointSkin
+{
+  std::array<int32_t, kMaxInfluences> joints{};
+  std::array<float, kMaxInfluences> weights{};
+};
+constexpr int kSkinValues = 2 * kMaxInfluences;
+
 /// Keeps the kMaxInfluences largest of `influences` (joint, weight), renormalizing them when
 /// some were cut, and appends the point's 4 joints and weights to `skin`, counting a cut in
 /// pointsOverLimit and largestDropped and a sum away from 1 in pointsOffUnitSum. Weights <= 0
@@ -98,6 +107,39 @@ struct SkinWeights
 /// weight 1.
 void addSkinPoint(
   std::vector<std::pair<int32_t, float>> influences, int32_t fallbackJoint, SkinWeights& skin);
+
+/// The skin of a point between `count` points (1 .. 3: a corner, a point on an edge, a point in
+/// a triangle) with barycentric weights `blend` (Feng et al. 2010, 5.2, weights interpolated):
+/// the union of their joints, each weighted by its interpolated weight, the 4 largest kept and
+/// scaled so that they sum to the interpolated total (a blend of points with at most 4 joints
+/// in all is the linear one). Joint ids are never blended.
+/// @param[in] skins  count skins of the points
+/// @param[in] blend  count barycentric weights, summing to 1
+PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend);
+
+/// The index of the animation `choice` names: "" the first, an animation's name, or its index
+/// as digits; -1 when there is none at all.
+/// @throws tc::InputError  for a choice that names none of them (the message lists them all)
+int findAnimation(const std::vector<Animation>& animations, const std::string& choice);
+
+/// A skeleton and its animations: what poses a skinned mesh, and what travels with it from the
+/// reader through the pipeline into the atlas.
+struct Rig
+{
+  Skeleton skeleton;
+  std::vector<Animation> animations;
+
+  bool empty() const { return skeleton.empty(); }
+};
+
+/// `rig` as JSON text (doubles written so that they read back bit-exactly): what the readers'
+/// field array "Rig" and the atlas file's metadata hold.
+std::string encodeRig(const Rig& rig);
+
+/// The rig of encodeRig's text.
+/// @throws tc::InputError  for text that is no rig (says what is wrong: a parent after its
+///   child, a track of a joint the skeleton lacks, keys out of order, a non-finite number...)
+Rig decodeRig(const std::string& text);
 
 /// Every joint's transform from its frame to the scene at `seconds` of `animation` (nullptr:
 /// the rest pose), composed from the root: global[j] = global[parent] local[j](t).

@@ -5,6 +5,8 @@
 #ifndef tcSkinData_h
 #define tcSkinData_h
 
+#include "TriChartCommonModule.h"
+
 #include "tc/skinning/skin.h"
 
 #include <vtkSmartPointer.h>
@@ -19,11 +21,11 @@ namespace tcvtk
 /// The skeleton posed by `globals` (tc::jointGlobals): a point per joint at its frame's origin,
 /// a line from each joint to its parent, and the point arrays JointNames, JointParent,
 /// InverseBindMatrices and JointTransforms (row-major 4 x 4).
-vtkSmartPointer<vtkPolyData> SkeletonPolyData(
+TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkPolyData> SkeletonPolyData(
   const tc::Skeleton& skeleton, const std::vector<tc::Matrix4>& globals);
 
 /// Adds the point arrays SkinIndices (int, 4 components) and SkinWeights (float, 4) of `skin`.
-void AddSkinArrays(vtkPointData* pointData, const tc::SkinWeights& skin);
+TRICHARTCOMMON_EXPORT void AddSkinArrays(vtkPointData* pointData, const tc::SkinWeights& skin);
 } // namespace tcvtk
 
 #endif
