@@ -6,8 +6,13 @@
 #pragma once
 
 #include "features/dual_graph.h"
+#include "features/spectrum.h"
+
+#include "tc/common/progress.h"
+#include "tc/features/spectral_clustering.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace tc
@@ -37,6 +42,23 @@ Components findComponents(const DualGraph& adjacent, int numClusters);
 /// @param[in] sizes  #C face counts
 /// @return #C cluster counts
 std::vector<int> allocateClusters(const std::vector<int64_t>& sizes, int numClusters);
+
+/// The spectrum of component `component` (its faces ascending) with `ne` eigenpairs wanted: what
+/// clusterComponents() embeds. Eq. 3's exact or Nystrom spectrum for spectralClustering(), eq. 5's
+/// for tc::clusterDeformation.
+using ComponentSpectrum = std::function<Spectrum(
+  int64_t component, const std::vector<int32_t>& faces, int ne, const Progress& progress)>;
+
+/// Clusters the faces of every component into result.clusterId (#F, preset by the caller),
+/// numbered per component in the order of their first face (clusters left empty take no id), and
+/// the eigenvalues of the largest component into result.eigenvalues (section 4.1): a component
+/// of one cluster, or of no more faces than clusters, needs no spectrum; the others are embedded
+/// (options.embedding, numEigenvectors) from spectrumOf and grouped by k-means (kmeans.h).
+/// result.usedNystrom is set for a component above options.nystromThreshold.
+/// @return the number of cluster ids used
+int32_t clusterComponents(const ComponentSpectrum& spectrumOf, const Components& components,
+  const SpectralClusteringOptions& options, SpectralClusteringResult& result,
+  const Progress& progress);
 } // namespace spectral
 } // namespace detail
 } // namespace tc

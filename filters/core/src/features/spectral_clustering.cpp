@@ -178,16 +178,17 @@ Spectrum componentSpectrum(const SpectralInputs& in, const std::vector<int32_t>&
   return exactSpectrum(faces, in.exact, localId, in.curvExp, in.normals, ne, in.options, progress);
 }
 
-// Clusters the faces of every component into result.clusterId, numbered per component in the
-// order of their first face (clusters left empty take no id), and the eigenvalues of the
-// largest component into result.eigenvalues.
-// @return the number of cluster ids used
-int32_t clusterComponents(const SpectralInputs& in, const Components& components,
-  SpectralClusteringResult& result, const Progress& progress)
+} // namespace
+
+namespace detail
 {
-  const SpectralClusteringOptions& options = in.options;
+namespace spectral
+{
+int32_t clusterComponents(const ComponentSpectrum& spectrumOf, const Components& components,
+  const SpectralClusteringOptions& options, SpectralClusteringResult& result,
+  const Progress& progress)
+{
   const int64_t nf = static_cast<int64_t>(result.clusterId.size());
-  std::vector<int32_t> localId(nf, 0);
   int64_t done = 0;
   int32_t nextCluster = 0;
   for (int64_t c = 0; c < components.count(); ++c)
@@ -221,8 +222,7 @@ int32_t clusterComponents(const SpectralInputs& in, const Components& components
     }
     result.usedNystrom |= n > options.nystromThreshold;
     const int neWanted = options.numEigenvectors > 0 ? options.numEigenvectors : k;
-    const Spectrum spectrum =
-      componentSpectrum(in, faces, c, neWanted, localId, part.sub(0.0, 0.8));
+    const Spectrum spectrum = spectrumOf(c, faces, neWanted, part.sub(0.0, 0.8));
     if (c == components.largest)
     {
       result.eigenvalues = spectrum.values;
@@ -246,7 +246,8 @@ int32_t clusterComponents(const SpectralInputs& in, const Components& components
   }
   return nextCluster;
 }
-} // namespace
+} // namespace spectral
+} // namespace detail
 
 SpectralClusteringResult spectralClustering(const TriMesh& mesh,
   const std::vector<double>& faceMeanCurvature, const std::vector<uint8_t>& crestVertex,
@@ -273,7 +274,12 @@ SpectralClusteringResult spectralClustering(const TriMesh& mesh,
   SpectralClusteringResult result;
   result.clusterId.assign(mesh.numTriangles(), -1);
   const SpectralInputs inputs{ exact, centroids, normals, curvExp, options };
-  const int32_t numIds = clusterComponents(inputs, components, result, progress.sub(0.2, 1.0));
+  std::vector<int32_t> localId(mesh.numTriangles(), 0);
+  const ComponentSpectrum spectrumOf =
+    [&](int64_t c, const std::vector<int32_t>& faces, int ne, const Progress& part)
+  { return componentSpectrum(inputs, faces, c, ne, localId, part); };
+  const int32_t numIds =
+    clusterComponents(spectrumOf, components, options, result, progress.sub(0.2, 1.0));
 
   // 5. One connected region per cluster, numbered by first face.
   if (options.connectedClusters)

@@ -55,7 +55,57 @@ struct LocalMatrix
 // ---------------------------------------------------------------------------------------------
 // Eq. 3 on the dual graph
 
-// N = D^-1/2 W D^-1/2 (eq. 2) over the component's faces, and the degrees D (at least 1e-300).
+// W over the component's faces (local ids), weight(k, f, g) on the graph's entry k from face f
+// to face g, and the degrees D = W 1 (at least 1e-300).
+template <typename Weight>
+LocalMatrix similarityRows(const std::vector<int32_t>& faces, const DualGraph& graph,
+  const std::vector<int32_t>& localId, const Weight& weight, std::vector<double>& degree)
+{
+  const int64_t n = static_cast<int64_t>(faces.size());
+  LocalMatrix W;
+  W.offsets.resize(n + 1);
+  W.offsets[0] = 0;
+  for (int64_t i = 0; i < n; ++i)
+  {
+    const int32_t f = faces[i];
+    W.offsets[i + 1] = W.offsets[i] + (graph.offsets[f + 1] - graph.offsets[f]);
+  }
+  W.ids.resize(W.offsets[n]);
+  W.values.resize(W.offsets[n]);
+  degree.assign(n, 0.0);
+  parallel_for(n,
+    [&](int64_t i)
+    {
+      const int32_t f = faces[i];
+      int64_t slot = W.offsets[i];
+      double sum = 0.0;
+      for (int64_t k = graph.offsets[f]; k < graph.offsets[f + 1]; ++k, ++slot)
+      {
+        const int32_t g = graph.ids[k];
+        const double w = weight(k, f, g);
+        W.ids[slot] = localId[g];
+        W.values[slot] = w;
+        sum += w;
+      }
+      degree[i] = std::max(sum, 1e-300);
+    });
+  return W;
+}
+
+// N = D^-1/2 W D^-1/2 (eq. 2), in place.
+void normalize(LocalMatrix& W, const std::vector<double>& degree)
+{
+  parallel_for(W.rows(),
+    [&](int64_t i)
+    {
+      for (int64_t k = W.offsets[i]; k < W.offsets[i + 1]; ++k)
+      {
+        W.values[k] /= std::sqrt(degree[i] * degree[W.ids[k]]);
+      }
+    });
+}
+
+// N = D^-1/2 W D^-1/2 (eq. 2) of eq. 3 over the component's faces, and the degrees D.
 LocalMatrix normalizedSimilarity(const std::vector<int32_t>& faces, const ExactGraph& exact,
   const std::vector<int32_t>& localId, const std::vector<double>& curvExp,
   const std::vector<double>& normals, const SpectralClusteringOptions& options,
@@ -64,52 +114,22 @@ LocalMatrix normalizedSimilarity(const std::vector<int32_t>& faces, const ExactG
   const DualGraph& graph = exact.graph;
   const double invNormalSigma =
     options.exactNormalSigma > 0.0 ? 1.0 / options.exactNormalSigma : 0.0;
-  const int64_t n = static_cast<int64_t>(faces.size());
-  LocalMatrix N;
-  N.offsets.resize(n + 1);
-  N.offsets[0] = 0;
-  for (int64_t i = 0; i < n; ++i)
+  const auto eq3 = [&](int64_t k, int32_t f, int32_t g)
   {
-    const int32_t f = faces[i];
-    N.offsets[i + 1] = N.offsets[i] + (graph.offsets[f + 1] - graph.offsets[f]);
-  }
-  N.ids.resize(N.offsets[n]);
-  N.values.resize(N.offsets[n]);
-  degree.assign(n, 0.0);
-  parallel_for(n,
-    [&](int64_t i)
-    {
-      const int32_t f = faces[i];
-      int64_t slot = N.offsets[i];
-      double sum = 0.0;
-      for (int64_t k = graph.offsets[f]; k < graph.offsets[f + 1]; ++k, ++slot)
-      {
-        const int32_t g = graph.ids[k];
-        // Eq. 3: w = beta exp(-(|k_i| + |k_j|) / sigma_k) exp(-dist / sigma_d).
-        // With exactNormalSigma, times exp(-(1 - n_i . n_j) / exactNormalSigma).
-        const double beta = graph.crest[k] ? options.crestBeta : 1.0;
-        const double bend = invNormalSigma > 0.0
-          ? (1.0 - normals[3 * f] * normals[3 * g] - normals[3 * f + 1] * normals[3 * g + 1] -
-              normals[3 * f + 2] * normals[3 * g + 2]) *
-            invNormalSigma
-          : 0.0;
-        const double w = beta *
-          std::exp(std::max(
-            kMinExponent, -(curvExp[f] + curvExp[g]) - graph.dist[k] * exact.invSigmaD - bend));
-        N.ids[slot] = localId[g];
-        N.values[slot] = w;
-        sum += w;
-      }
-      degree[i] = std::max(sum, 1e-300);
-    });
-  parallel_for(n,
-    [&](int64_t i)
-    {
-      for (int64_t k = N.offsets[i]; k < N.offsets[i + 1]; ++k)
-      {
-        N.values[k] /= std::sqrt(degree[i] * degree[N.ids[k]]);
-      }
-    });
+    // Eq. 3: w = beta exp(-(|k_i| + |k_j|) / sigma_k) exp(-dist / sigma_d).
+    // With exactNormalSigma, times exp(-(1 - n_i . n_j) / exactNormalSigma).
+    const double beta = graph.crest[k] ? options.crestBeta : 1.0;
+    const double bend = invNormalSigma > 0.0
+      ? (1.0 - normals[3 * f] * normals[3 * g] - normals[3 * f + 1] * normals[3 * g + 1] -
+          normals[3 * f + 2] * normals[3 * g + 2]) *
+        invNormalSigma
+      : 0.0;
+    return beta *
+      std::exp(std::max(
+        kMinExponent, -(curvExp[f] + curvExp[g]) - graph.dist[k] * exact.invSigmaD - bend));
+  };
+  LocalMatrix N = similarityRows(faces, graph, localId, eq3, degree);
+  normalize(N, degree);
   return N;
 }
 
@@ -689,6 +709,18 @@ Spectrum exactSpectrum(const std::vector<int32_t>& faces, const ExactGraph& exac
   Spectrum out;
   const LocalMatrix N =
     normalizedSimilarity(faces, exact, localId, curvExp, normals, options, out.degree);
+  largestEigenpairs(N, ne, progress, out.values, out.vectors);
+  return out;
+}
+
+Spectrum weightedSpectrum(const std::vector<int32_t>& faces, const DualGraph& graph,
+  const std::vector<double>& weights, const std::vector<int32_t>& localId, int ne,
+  const Progress& progress)
+{
+  Spectrum out;
+  LocalMatrix N = similarityRows(
+    faces, graph, localId, [&](int64_t k, int32_t, int32_t) { return weights[k]; }, out.degree);
+  normalize(N, out.degree);
   largestEigenpairs(N, ne, progress, out.values, out.vectors);
   return out;
 }

@@ -44,6 +44,18 @@ Spectrum exactSpectrum(const std::vector<int32_t>& faces, const ExactGraph& exac
   const std::vector<double>& normals, int ne, const SpectralClusteringOptions& options,
   const Progress& progress);
 
+/// The exact spectrum of one component for similarities given on the graph's entries (the
+/// deformation similarity of eq. 5, tc::clusterDeformation): W over the component's faces,
+/// normalized to N (eq. 2), and its ne largest eigenpairs, solved as exactSpectrum() does.
+/// @param[in] faces    global ids of the component's faces, ascending
+/// @param[in] graph    symmetric dual graph whose rows of `faces` stay inside the component
+/// @param[in] weights  one positive similarity per entry of graph.ids, equal in both directions
+/// @param[in] localId  #F index of each face of the component in `faces`
+/// @throws std::runtime_error when no eigensolver converges
+Spectrum weightedSpectrum(const std::vector<int32_t>& faces, const DualGraph& graph,
+  const std::vector<double>& weights, const std::vector<int32_t>& localId, int ne,
+  const Progress& progress);
+
 /// The Nystrom approximation of the spectrum of one component: eq. 3 with the Euclidean
 /// distance of centroids and a normal term in place of beta (nystromNormalSigma), sampled on
 /// nystromSamples faces, extended to all faces in rank nystromRank (Fowlkes et al., section 3;
