@@ -13,6 +13,7 @@
 #include "tc/io/scene_io.h"
 #include "tc/io/sequence_io.h"
 #include "tc/io/soup_io.h"
+#include "tc/skinning/proxy_bones.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -267,14 +268,33 @@ ReadResult ReadScene(
   return read;
 }
 
-/// A deforming sequence (tc::readSequence): frame 0 as the mesh, the frames in `sequence`.
-ReadResult ReadSequence(const std::string& path, const tc::Progress& progress,
+/// The proxy bones of a sequence of several frames (tc::fitProxyBones) as the skin arrays and
+/// the Rig field of `mesh`; returns the report's line.
+std::string AddProxyBones(
+  const tc::DeformingSequence& sequence, const tc::Progress& progress, vtkPolyData* mesh)
+{
+  const tc::ProxyBonesResult fit = tc::fitProxyBones(sequence, {}, progress);
+  tcvtk::AddSkinArrays(mesh->GetPointData(), fit.skin);
+  tcvtk::SetTextField(
+    mesh->GetFieldData(), tc::kRig, tc::encodeRig(tc::proxyRig(fit, sequence.times, "frames")));
+  std::ostringstream line;
+  line << "proxy bones: " << fit.skeleton.joints.size() << " fitted to the frames (point arrays "
+       << tc::kSkinIndices << ", " << tc::kSkinWeights << ", field " << tc::kRig << "), RMS "
+       << 100 * fit.lbs.relative(fit.lbs.totalRms)
+       << "% of the diagonal (one rigid bone per point: "
+       << 100 * fit.rigid.relative(fit.rigid.totalRms) << "%)\n";
+  return line.str();
+}
+
+/// A deforming sequence (tc::readSequence): frame 0 as the mesh, the frames in `sequence`,
+/// and with `proxyBones` the skin fitted to them.
+ReadResult ReadSequence(const std::string& path, const tc::Progress& progress, bool proxyBones,
   std::optional<tc::DeformingSequence>& sequence)
 {
   ReadResult read;
   try
   {
-    sequence = tc::readSequence(path, progress);
+    sequence = tc::readSequence(path, progress.sub(0.0, proxyBones ? 0.7 : 1.0));
     read.mesh = vtkSmartPointer<vtkPolyData>::New();
     tcvtk::FromPolygonSoup(sequence->soup, read.mesh);
     AddMeshFileData(read, sequence->attributes, sequence->texture, sequence->warnings);
@@ -283,6 +303,10 @@ ReadResult ReadSequence(const std::string& path, const tc::Progress& progress,
       Count(static_cast<int64_t>(times.size()), "frame", "frames") +
       " with one connectivity, times " + Seconds(times.front()) + " to " + Seconds(times.back()) +
       "\n";
+    if (proxyBones && times.size() > 1)
+    {
+      read.sceneReport += AddProxyBones(*sequence, progress.sub(0.7, 1.0), read.mesh);
+    }
   }
   catch (const tc::Aborted&)
   {
@@ -441,6 +465,7 @@ public:
   ReadResult rest;
   std::optional<tc::Scene> scene;
   std::optional<tc::DeformingSequence> sequence;
+  bool proxyBones = false;
 };
 
 namespace
@@ -561,7 +586,7 @@ bool tcMeshReader::Load()
   }
   const bool sequence = tc::isSequencePath(this->FileName);
   if (this->Cache && this->Cache->fileName == this->FileName &&
-    this->Cache->stamp == Stamp(this->FileName))
+    this->Cache->stamp == Stamp(this->FileName) && this->Cache->proxyBones == this->ProxyBones)
   {
     return true;
   }
@@ -586,7 +611,7 @@ bool tcMeshReader::Load()
   // 2. Read with the reader of that format.
   auto cache = std::make_unique<tcMeshReaderCache>();
   const tc::Progress progress = tcvtk::MakeProgress(this);
-  cache->rest = sequence              ? ReadSequence(this->FileName, progress, cache->sequence)
+  cache->rest = sequence ? ReadSequence(this->FileName, progress, this->ProxyBones, cache->sequence)
     : tc::isSceneFile(this->FileName) ? ReadScene(this->FileName, progress, cache->scene)
     : IsCoreFormat(format)            ? ReadWithCore(this->FileName, format)
                                       : ReadWithVTK(this->FileName, format);
@@ -610,6 +635,7 @@ bool tcMeshReader::Load()
   cache->fileName = this->FileName;
   cache->stamp = Stamp(this->FileName);
   cache->format = format;
+  cache->proxyBones = this->ProxyBones;
   this->Cache = std::move(cache);
   return true;
 }
@@ -715,5 +741,6 @@ void tcMeshReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "Animation: " << this->Animation << "\n";
   os << indent << "BindPose: " << this->BindPose << "\n";
+  os << indent << "ProxyBones: " << this->ProxyBones << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

@@ -38,7 +38,8 @@
  *   time request (or BindPose on) the rest pose;
  * - a deforming sequence (tc::readSequence): a folder of OBJ/PLY/OFF frames with one
  *   connectivity, a glob pattern naming them, or an MD2 file's vertex keyframes. Frame k is
- *   at time k; a time request returns the frame at the largest time not after it.
+ *   at time k; a time request returns the frame at the largest time not after it. With
+ *   ProxyBones, frame 0 also carries a linear blend skin fitted to the frames.
  *
  * What was read (format, points, polygons, texture coordinates, vertex colours, "texture NAME
  * WxH", arrays, warnings) is in GetReport() and in the field array "ReaderReport". A missing
@@ -86,6 +87,15 @@ public:
   vtkBooleanMacro(BindPose, bool);
   ///@}
 
+  ///@{
+  /// Fit proxy bones to a sequence of several frames (tc::fitProxyBones, Feng et al. 4.3): its
+  /// rest frame then carries SkinIndices, SkinWeights and the field Rig (the fitted frames as
+  /// the animation "frames"), so it builds into a skinned atlas. On by default.
+  vtkSetMacro(ProxyBones, bool);
+  vtkGetMacro(ProxyBones, bool);
+  vtkBooleanMacro(ProxyBones, bool);
+  ///@}
+
   /// The animations of the file last read (after UpdateInformation), in the file's order.
   int GetNumberOfAnimations() const;
   const char* GetAnimationName(int index) const;
@@ -117,6 +127,7 @@ private:
   std::string FileName;
   std::string Animation;
   bool BindPose = false;
+  bool ProxyBones = true;
   std::string Report;
   std::unique_ptr<tcMeshReaderCache> Cache;
 };

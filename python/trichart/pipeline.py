@@ -202,11 +202,12 @@ def _output(algorithm, port=0):
     return copy
 
 
-def _mesh_reader(path, animation, bind_pose):
+def _mesh_reader(path, animation, bind_pose, proxy_bones=True):
     reader = TriChartIO.tcMeshReader()
     reader.SetFileName(str(path))
     reader.SetAnimation("" if animation is None else str(animation))
     reader.SetBindPose(bool(bind_pose))
+    reader.SetProxyBones(bool(proxy_bones))
     return reader
 
 
@@ -218,15 +219,17 @@ def _run_at(reader, time, label, progress):
     return run(reader, label, progress)
 
 
-def read_mesh(path, progress=None, time=None, animation=None, bind_pose=False):
+def read_mesh(path, progress=None, time=None, animation=None, bind_pose=False,
+              proxy_bones=True):
     """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), the surfaces of a
     scene file (.glb, .gltf, .fbx, .x, .md2), or a deforming sequence (a folder of frames, a
     pattern such as 'frames/f_*.obj', or an MD2 file's keyframes) into a vtkPolyData.
 
     Without `time`, the rest pose (a sequence's first frame); with it (seconds), the scene
     posed by `animation` (its name or index; the first by default) or the sequence's frame
-    at that time. bind_pose=True reads the rest pose and announces no time steps."""
-    reader = _mesh_reader(path, animation, bind_pose)
+    at that time. bind_pose=True reads the rest pose and announces no time steps.
+    proxy_bones=False reads a sequence without fitting proxy bones (no skin)."""
+    reader = _mesh_reader(path, animation, bind_pose, proxy_bones)
     _run_at(reader, time, "read", progress)
     return _output(reader)
 

@@ -194,3 +194,23 @@ def test_a_skinned_atlas_keeps_the_skin_and_poses_like_the_input(shared_data, tm
     with pytest.raises(trichart.TriChartError, match="SkinIndices"):
         trichart.pose(trichart.prepare(trichart.read_mesh(
             shared_data / "sequences" / "snake_closed_21f" / "f_0000.obj"))[0], 0.5)
+
+
+def test_a_sequence_builds_into_a_skinned_atlas_through_its_proxy_bones(shared_data, tmp_path):
+    """The snake's baked frames, without a skeleton: the reader fits proxy bones, the build
+    keeps them, and posed at its frames the finest level stays within twice its rest error of
+    the frames themselves (the fit's error included)."""
+    import json
+    folder = shared_data / "sequences" / "snake_closed_21f"
+    rest = trichart.read_mesh(folder)
+    assert rest.GetPointData().GetArray(tcArrayNames.SkinWeights()) is not None
+    assert "proxy bones: " in _field_text(rest, tcArrayNames.ReaderReport())
+    plain = trichart.read_mesh(folder, proxy_bones=False)
+    assert plain.GetPointData().GetArray(tcArrayNames.SkinWeights()) is None
+    trichart.build(folder, tmp_path / "sequence.exr")
+    r = _cli("eval", folder, tmp_path / "sequence.exr", "--frames", "5", "--json")
+    assert r.returncode == 0, r.stderr
+    figures = json.loads(r.stdout)
+    print(f"snake sequence: rest {figures['rest']['hausdorff_fraction']:.3e}, largest frame / "
+          f"rest {figures['largest_ratio_to_rest']:.2f}")
+    assert figures["largest_ratio_to_rest"] <= 2.0

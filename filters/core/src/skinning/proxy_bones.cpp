@@ -210,4 +210,26 @@ FitError measureFit(
   e.totalRms = std::sqrt(squares / count);
   return e;
 }
+
+Rig proxyRig(const ProxyBonesResult& fit, const std::vector<double>& times, const std::string& name)
+{
+  if (times.size() != fit.frameMatrices.size() || !std::is_sorted(times.begin(), times.end()) ||
+    times.empty())
+  {
+    throw InputError("the proxy bones were fitted to " + std::to_string(fit.frameMatrices.size()) +
+      " frames, and " + std::to_string(times.size()) + " ascending frame times are needed");
+  }
+  Rig rig;
+  rig.skeleton = fit.skeleton;
+  Animation animation;
+  animation.name = name;
+  animation.duration = std::max(0.0, times.back());
+  animation.ticksPerSecond = 1.0;
+  animation.frameTimes = times;
+  // The proxy joints are roots bound at the rest frame: their global transforms are the fitted
+  // skinning matrices.
+  animation.frameGlobals = fit.frameMatrices;
+  rig.animations.push_back(std::move(animation));
+  return rig;
+}
 } // namespace tc

@@ -135,6 +135,39 @@ Joint jointOf(const Reader& in, const Json& j, int32_t index)
   return joint;
 }
 
+/// The sampled poses of an animation ("frameTimes" ascending, one pose of #joints matrices in
+/// "frameGlobals" per time), when it has them.
+void sampledPoses(
+  const Reader& in, const Json& a, const std::string& where, size_t joints, Animation& animation)
+{
+  if (!a.contains("frameTimes"))
+  {
+    return;
+  }
+  animation.frameTimes = in.numbers(a.at("frameTimes"), 1, where + ".frameTimes");
+  const Json& frames = in.member(a, "frameGlobals", where);
+  if (!frames.is_array() || frames.size() != animation.frameTimes.size() ||
+    !std::is_sorted(animation.frameTimes.begin(), animation.frameTimes.end()))
+  {
+    in.fail(where + ": frameTimes are not ascending, one per pose of frameGlobals");
+  }
+  for (size_t k = 0; k < frames.size(); ++k)
+  {
+    const std::string at = where + ".frameGlobals[" + std::to_string(k) + "]";
+    const std::vector<double> values = in.numbers(frames[k], 16, at);
+    if (values.size() != 16 * joints)
+    {
+      in.fail(at + " is not one matrix per joint");
+    }
+    std::vector<Matrix4> pose(joints);
+    for (size_t j = 0; j < joints; ++j)
+    {
+      std::copy_n(&values[16 * j], 16, pose[j].begin());
+    }
+    animation.frameGlobals.push_back(std::move(pose));
+  }
+}
+
 Animation animationOf(const Reader& in, const Json& a, size_t index, int32_t joints)
 {
   const std::string where = "animations[" + std::to_string(index) + "]";
@@ -163,6 +196,7 @@ Animation animationOf(const Reader& in, const Json& a, size_t index, int32_t joi
     keys(in, tracks[t], "scaleTimes", "scales", at, track.scaleTimes, track.scales);
     animation.tracks.push_back(std::move(track));
   }
+  sampledPoses(in, a, where, static_cast<size_t>(joints), animation);
   return animation;
 }
 } // namespace
@@ -183,8 +217,14 @@ std::string encodeRig(const Rig& rig)
     {
       tracks.push_back(trackJson(t));
     }
-    animations.push_back({ { "name", a.name }, { "duration", a.duration },
-      { "ticksPerSecond", a.ticksPerSecond }, { "tracks", tracks } });
+    Json frames = Json::array();
+    for (const std::vector<Matrix4>& pose : a.frameGlobals)
+    {
+      frames.push_back(flat(pose));
+    }
+    animations.push_back(
+      { { "name", a.name }, { "duration", a.duration }, { "ticksPerSecond", a.ticksPerSecond },
+        { "tracks", tracks }, { "frameTimes", a.frameTimes }, { "frameGlobals", frames } });
   }
   // Invalid UTF-8 in a joint's name (a file's bytes) is replaced rather than refused.
   return Json{ { "joints", joints }, { "animations", animations } }.dump(

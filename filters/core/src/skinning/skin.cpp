@@ -102,6 +102,10 @@ Matrix4 inverseAffine(const Matrix4& m)
 std::vector<double> animationKeyTimes(const Animation& animation)
 {
   std::set<double> times{ 0.0, animation.duration };
+  for (const double t : animation.frameTimes)
+  {
+    times.insert(t);
+  }
   for (const JointTrack& track : animation.tracks)
   {
     for (const auto* keys : { &track.positionTimes, &track.rotationTimes, &track.scaleTimes })
@@ -234,9 +238,43 @@ PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend
   return out;
 }
 
+namespace
+{
+/// The sampled poses of `animation` at `seconds`: the frames around it blended linearly, the
+/// first or last outside them.
+std::vector<Matrix4> sampledGlobals(
+  const Skeleton& skeleton, const Animation& animation, double seconds)
+{
+  const auto [k, a] = keyInterval(animation.frameTimes, seconds);
+  const size_t next = std::min(k + 1, animation.frameTimes.size() - 1);
+  for (const size_t f : { k, next })
+  {
+    if (animation.frameGlobals.size() != animation.frameTimes.size() ||
+      animation.frameGlobals[f].size() != skeleton.joints.size())
+    {
+      throw InputError("animation '" + animation.name + "' has " +
+        std::to_string(animation.frameGlobals.size()) + " sampled poses for " +
+        std::to_string(animation.frameTimes.size()) + " frame times, or a pose of another " +
+        "joint count than the skeleton's " + std::to_string(skeleton.joints.size()));
+    }
+  }
+  std::vector<Matrix4> out(skeleton.joints.size());
+  for (size_t j = 0; j < out.size(); ++j)
+  {
+    out[j] = toMatrix(
+      (1.0 - a) * view(animation.frameGlobals[k][j]) + a * view(animation.frameGlobals[next][j]));
+  }
+  return out;
+}
+} // namespace
+
 std::vector<Matrix4> jointGlobals(
   const Skeleton& skeleton, const Animation* animation, double seconds)
 {
+  if (animation && !animation->frameTimes.empty())
+  {
+    return sampledGlobals(skeleton, *animation, seconds);
+  }
   std::vector<Matrix4> local(skeleton.joints.size());
   for (size_t j = 0; j < local.size(); ++j)
   {

@@ -105,6 +105,13 @@ ProxyBonesResult fitProxyBones(const std::vector<int32_t>& triangles,
 ProxyBonesResult fitProxyBones(const DeformingSequence& sequence,
   const ProxyBonesOptions& options = {}, const Progress& progress = {});
 
+/// The fit as a rig: its proxy skeleton and one animation named `name` whose sampled poses are
+/// the fitted frames at `times` (seconds, one per frame), so that a sequence travels through the
+/// pipeline and into the atlas as a skinned mesh does.
+/// @throws InputError  when `times` has not one time per fitted frame or is not ascending
+Rig proxyRig(
+  const ProxyBonesResult& fit, const std::vector<double>& times, const std::string& name);
+
 /// The distances between `fitted` frames and the input `frames`, per frame.
 /// @param[in] fitted  #K x (#V x 3)
 /// @param[in] frames  #K x (#V x 3), frame 0 the rest (its bounding box gives the diagonal)

@@ -58,13 +58,19 @@ struct JointTrack
 };
 
 /// A keyframed animation of a skeleton: positions and scales interpolated linearly, rotations
-/// spherically, held at the first and last key outside them.
+/// spherically, held at the first and last key outside them. Or, for the proxy bones of a
+/// deforming sequence (whose bones may shear, which no track can say), sampled poses: every
+/// joint's global transform at each frame time, interpolated linearly between frames.
 struct Animation
 {
   std::string name;
   double duration = 0.0;       ///< seconds; the animation plays over [0, duration]
   double ticksPerSecond = 0.0; ///< the file's time unit (informative: times are in seconds)
   std::vector<JointTrack> tracks;
+  /// Sampled poses, ascending seconds; when there are any, they pose the skeleton, not tracks.
+  std::vector<double> frameTimes;
+  /// #frameTimes x #joints: each joint's transform to the scene at that frame.
+  std::vector<std::vector<Matrix4>> frameGlobals;
 };
 
 /// The distinct key times of `animation` in [0, duration], with 0 and the duration, ascending
