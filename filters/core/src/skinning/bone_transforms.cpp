@@ -17,11 +17,6 @@ namespace proxy
 {
 namespace
 {
-Eigen::Vector3d pointOf(const std::vector<float>& frame, int64_t v)
-{
-  return { frame[3 * v], frame[3 * v + 1], frame[3 * v + 2] };
-}
-
 Matrix4 toMatrix4(const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation)
 {
   Matrix4 m = identityMatrix();

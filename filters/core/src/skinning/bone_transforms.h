@@ -8,6 +8,8 @@
 #include "tc/common/progress.h"
 #include "tc/skinning/skin.h"
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +19,12 @@ namespace detail
 {
 namespace proxy
 {
+/// Point v of a frame (#V x 3 floats), in double.
+inline Eigen::Vector3d pointOf(const std::vector<float>& frame, int64_t v)
+{
+  return { frame[3 * v], frame[3 * v + 1], frame[3 * v + 2] };
+}
+
 /// Per bone, the points of its cluster's faces, ascending (CSR).
 struct BonePoints
 {

@@ -19,11 +19,6 @@ namespace proxy
 {
 namespace
 {
-Eigen::Vector3d pointOf(const std::vector<float>& frame, int64_t v)
-{
-  return { frame[3 * v], frame[3 * v + 1], frame[3 * v + 2] };
-}
-
 Eigen::Vector3d transformPoint(const Matrix4& m, const Eigen::Vector3d& p)
 {
   return { m[0] * p.x() + m[1] * p.y() + m[2] * p.z() + m[3],
