@@ -56,6 +56,10 @@ void tcGLTFWriter::WriteData()
   try
   {
     this->Lods = tc::writeGltf(this->FileName, atlas, options, tcvtk::MakeProgress(this));
+    for (const std::string& note : tc::gltfExportNotes(atlas))
+    {
+      vtkWarningMacro("" << note);
+    }
   }
   catch (const std::exception& e)
   {

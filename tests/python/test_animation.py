@@ -214,3 +214,38 @@ def test_a_sequence_builds_into_a_skinned_atlas_through_its_proxy_bones(shared_d
     print(f"snake sequence: rest {figures['rest']['hausdorff_fraction']:.3e}, largest frame / "
           f"rest {figures['largest_ratio_to_rest']:.2f}")
     assert figures["largest_ratio_to_rest"] <= 2.0
+
+
+def test_a_skinned_atlas_exports_to_gltf_and_plays_back(shared_data, tmp_path):
+    """wuson built, exported with its skin and animations, read back by the reader (Assimp):
+    the same animations, and posed at a time of Walk the export's finest level lies on the
+    atlas's finest level posed alike (its weights sum to 1, so glTF's normalization is moot)."""
+    glb = shared_data / "skinned" / "wuson" / "wuson.glb"
+    trichart.build(glb, tmp_path / "wuson.exr",
+                   prepare_options={"fill_holes": True, "split_non_manifold": True})
+    r = _cli("export", tmp_path / "wuson.exr", "-o", tmp_path / "lods.glb")
+    assert r.returncode == 0, r.stderr
+    assert trichart.animation_names(tmp_path / "lods.glb") == trichart.animation_names(glb)
+    finest = trichart.rebuild(trichart.read_atlas(tmp_path / "wuson.exr"))
+    for time, reference, bound in ((None, finest, 1e-6),
+                                   (1.2, trichart.pose(finest, 1.2, animation="Wuson_Walk"), 1e-4)):
+        lod0 = _first_scene_mesh(trichart.read_mesh(tmp_path / "lods.glb", time=time,
+                                                    animation="Wuson_Walk"))
+        assert lod0.GetNumberOfPolys() == finest.GetNumberOfPolys()
+        _, f = trichart.surface_distance(lod0, reference)
+        assert f["hausdorff"] / f["diagonal"] < bound, (time, f)
+
+
+def _first_scene_mesh(mesh):
+    """The cells of scene mesh 0 (the export's LOD 0) of a mesh the reader read."""
+    from vtkmodules.vtkFiltersCore import vtkThreshold
+    from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+    lod0 = vtkThreshold()
+    lod0.SetInputData(mesh)
+    lod0.SetInputArrayToProcess(0, 0, 0, 1, tcArrayNames.SceneMeshId())
+    lod0.SetLowerThreshold(0)
+    lod0.SetUpperThreshold(0)
+    surface = vtkGeometryFilter()
+    surface.SetInputConnection(lod0.GetOutputPort())
+    surface.Update()
+    return surface.GetOutput()

@@ -13,6 +13,7 @@
 #include "tc/io/gltf_export.h"
 
 #include <assimp/Importer.hpp>
+#include <assimp/anim.h>
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 
 namespace
 {
@@ -68,12 +70,12 @@ std::pair<nlohmann::json, std::string> glbChunks(const std::string& bytes)
 
 size_t componentBytes(int type)
 {
-  return type == 5123 ? 2 : 4;
-} // uint16, or uint32 / float
+  return type == 5121 ? 1 : type == 5123 ? 2 : 4;
+} // uint8, uint16, or uint32 / float
 
 size_t componentsOf(const std::string& type)
 {
-  return type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
+  return type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "MAT4" ? 16 : 4;
 }
 
 /// Buffer views inside the buffer, accessors inside their views, POSITION bounds exact.
@@ -262,4 +264,329 @@ TEST_F(GltfExport, RefusesBadOptionsAndLeavesNoFileOnAFailedWrite)
   EXPECT_THROW(tc::writeGltf(file("missing/a.glb"), bunnyAtlas()), tc::InputError);
   EXPECT_THROW(tc::writeGltf(file("a.obj"), bunnyAtlas()), tc::InputError);
   EXPECT_TRUE(std::filesystem::is_empty(Folder));
+}
+
+namespace
+{
+tc::Matrix4 translation(double x, double y, double z)
+{
+  tc::Matrix4 m = tc::identityMatrix();
+  m[3] = x, m[7] = y, m[11] = z;
+  return m;
+}
+
+/// A rotation by `angle` about z, as a matrix and as tc's quaternion (w, x, y, z).
+tc::Matrix4 turn(double angle)
+{
+  tc::Matrix4 m = tc::identityMatrix();
+  m[0] = m[5] = std::cos(angle), m[1] = -std::sin(angle), m[4] = std::sin(angle);
+  return m;
+}
+
+std::array<double, 4> turnQuaternion(double angle)
+{
+  return { std::cos(angle / 2), 0.0, 0.0, std::sin(angle / 2) };
+}
+
+/// The bunny's x range: the rig's joints lie along it and the skin blends over it.
+std::pair<double, double> xRange(const tc::Atlas& atlas)
+{
+  const tc::TriMesh m = tc::rebuildMesh(atlas, std::vector<int32_t>(atlas.charts.size(), 0)).mesh;
+  double lo = m.points[0], hi = m.points[0];
+  for (size_t v = 0; v < m.points.size(); v += 3)
+  {
+    lo = std::min(lo, m.points[v]), hi = std::max(hi, m.points[v]);
+  }
+  return { lo, hi };
+}
+
+/// "hip" (root) and "knee" (its child, halfway along x, turned), "knee" again as a second joint
+/// of the knee's node (sameNodeAs, its own inverse bind); the animation "bend" moves the hip
+/// and bends the knee (keys ending before the duration), and "sampled" is of sampled poses.
+tc::Rig bunnyRig(double x0, double length)
+{
+  tc::Rig rig;
+  tc::Joint hip{ "hip", -1, translation(x0, 0.0, 0.0), {}, -1 };
+  hip.inverseBind = tc::inverseAffine(hip.restLocal);
+  tc::Joint knee{ "knee", 0, tc::multiply(translation(length / 2, 0.0, 0.0), turn(0.2)), {}, -1 };
+  knee.inverseBind = tc::inverseAffine(tc::multiply(hip.restLocal, knee.restLocal));
+  tc::Joint second = knee;
+  second.sameNodeAs = 1;
+  second.inverseBind = tc::multiply(translation(0.0, 0.1 * length, 0.0), knee.inverseBind);
+  rig.skeleton.joints = { hip, knee, second };
+  tc::Animation bend;
+  bend.name = "bend";
+  bend.duration = 2.0;
+  bend.ticksPerSecond = 25.0;
+  tc::JointTrack moveHip;
+  moveHip.joint = 0;
+  moveHip.positionTimes = { 0.0, 2.0 };
+  moveHip.positions = { { x0, 0.0, 0.0 }, { x0, 0.0, 0.2 * length } };
+  tc::JointTrack bendKnee;
+  bendKnee.joint = 1;
+  bendKnee.rotationTimes = { 0.0, 1.0, 1.5 };
+  bendKnee.rotations = { turnQuaternion(0.2), turnQuaternion(0.8), turnQuaternion(-0.3) };
+  bendKnee.positionTimes = { 0.5, 1.5 };
+  bendKnee.positions = { { length / 2, 0.0, 0.0 }, { length / 2, 0.1 * length, 0.0 } };
+  bend.tracks = { moveHip, bendKnee };
+  tc::Animation sampled;
+  sampled.name = "sampled";
+  sampled.duration = 1.0;
+  sampled.frameTimes = { 0.0, 1.0 };
+  sampled.frameGlobals.assign(2, std::vector<tc::Matrix4>(3, tc::identityMatrix()));
+  rig.animations = { bend, sampled };
+  return rig;
+}
+
+/// The skin of a sample at x: a function of the position, so that shared sides agree; weights
+/// summing to 0.9 (not 1), as a file may give them.
+void skinAt(double x, double x0, double length, float* skin)
+{
+  const float t = float(std::clamp((x - x0) / length, 0.0, 1.0));
+  const float values[tc::kSkinValues] = { 0, 1, 2, 0, 0.9f * (1 - t), 0.54f * t, 0.36f * t, 0 };
+  std::copy(values, values + tc::kSkinValues, skin);
+}
+
+const tc::Atlas& skinnedAtlas()
+{
+  static const tc::Atlas atlas = []
+  {
+    tc::Atlas a = bunnyAtlas();
+    const auto [x0, x1] = xRange(a);
+    a.rig = bunnyRig(x0, x1 - x0);
+    a.attributes.push_back({ tc::kAtlasSkin, tc::kSkinValues });
+    for (tc::AtlasImage& image : a.images)
+    {
+      const size_t texels = size_t(image.width) * size_t(image.height);
+      std::vector<float> skin(texels * tc::kSkinValues);
+      for (size_t t = 0; t < texels; ++t)
+      {
+        skinAt(image.data[0][3 * t], x0, x1 - x0, skin.data() + tc::kSkinValues * t);
+      }
+      image.data.push_back(std::move(skin));
+    }
+    tc::validateAtlas(a);
+    return a;
+  }();
+  return atlas;
+}
+
+/// Poses an Assimp scene's meshes with its own data (the idea of test_scene_skin.cpp's
+/// AssimpBaker): node transforms with the channels interpolated at `ticks` (no animation: the
+/// nodes' rest transforms), then each vertex by its bones' weights.
+class AssimpPoser
+{
+public:
+  AssimpPoser(const aiScene& scene, const aiAnimation* animation)
+    : Scene_(scene)
+  {
+    for (unsigned c = 0; animation && c < animation->mNumChannels; ++c)
+    {
+      Channels_[animation->mChannels[c]->mNodeName.C_Str()] = animation->mChannels[c];
+    }
+  }
+
+  /// Mesh `mesh`'s points at `ticks`.
+  std::vector<double> pose(const aiMesh& mesh, double ticks)
+  {
+    walk(*Scene_.mRootNode, aiMatrix4x4(), ticks);
+    std::vector<aiVector3D> sum(mesh.mNumVertices, aiVector3D(0, 0, 0));
+    for (unsigned b = 0; b < mesh.mNumBones; ++b)
+    {
+      const aiBone& bone = *mesh.mBones[b];
+      const aiMatrix4x4 m = Globals_.at(bone.mName.C_Str()) * bone.mOffsetMatrix;
+      for (unsigned w = 0; w < bone.mNumWeights; ++w)
+      {
+        const aiVertexWeight& vw = bone.mWeights[w];
+        sum[vw.mVertexId] += (m * mesh.mVertices[vw.mVertexId]) * vw.mWeight;
+      }
+    }
+    std::vector<double> points;
+    for (const aiVector3D& p : sum)
+    {
+      points.insert(points.end(), { p.x, p.y, p.z });
+    }
+    return points;
+  }
+
+private:
+  template <typename Key>
+  static std::pair<unsigned, float> at(const Key* keys, unsigned n, double t)
+  {
+    unsigned i = 0;
+    while (i + 1 < n && t >= keys[i + 1].mTime)
+    {
+      ++i;
+    }
+    if (i + 1 >= n || t <= keys[i].mTime)
+    {
+      return { i, 0.0f };
+    }
+    return { i, float((t - keys[i].mTime) / (keys[i + 1].mTime - keys[i].mTime)) };
+  }
+
+  template <typename Key>
+  static aiVector3D lerp(const Key* keys, unsigned n, double t)
+  {
+    const auto [i, a] = at(keys, n, t);
+    return a > 0 ? keys[i].mValue * (1 - a) + keys[i + 1].mValue * a : keys[i].mValue;
+  }
+
+  aiMatrix4x4 local(const aiNode& node, double t) const
+  {
+    const auto it = Channels_.find(node.mName.C_Str());
+    if (it == Channels_.end())
+    {
+      return node.mTransformation;
+    }
+    const aiNodeAnim& c = *it->second;
+    aiVector3D p, s(1, 1, 1);
+    aiQuaternion q;
+    node.mTransformation.Decompose(s, q, p);
+    p = c.mNumPositionKeys ? lerp(c.mPositionKeys, c.mNumPositionKeys, t) : p;
+    s = c.mNumScalingKeys ? lerp(c.mScalingKeys, c.mNumScalingKeys, t) : s;
+    if (c.mNumRotationKeys)
+    {
+      const auto [i, a] = at(c.mRotationKeys, c.mNumRotationKeys, t);
+      q = c.mRotationKeys[i].mValue;
+      if (a > 0)
+      {
+        aiQuaternion::Interpolate(q, c.mRotationKeys[i].mValue, c.mRotationKeys[i + 1].mValue, a);
+      }
+      q.Normalize();
+    }
+    return aiMatrix4x4(s, q, p);
+  }
+
+  void walk(const aiNode& node, const aiMatrix4x4& parent, double t)
+  {
+    Globals_[node.mName.C_Str()] = parent * local(node, t);
+    for (unsigned c = 0; c < node.mNumChildren; ++c)
+    {
+      walk(*node.mChildren[c], Globals_[node.mName.C_Str()], t);
+    }
+  }
+
+  const aiScene& Scene_;
+  std::map<std::string, const aiNodeAnim*> Channels_;
+  std::map<std::string, aiMatrix4x4> Globals_;
+};
+
+/// The rebuilt mesh's Skin values as tc::SkinWeights, the weights divided by their sum as the
+/// file holds them.
+tc::SkinWeights normalizedSkin(const tc::RebuiltMesh& rebuilt, int32_t skinAttribute)
+{
+  const std::vector<float>& values = rebuilt.attributes[size_t(skinAttribute) - 1];
+  tc::SkinWeights skin;
+  for (size_t v = 0; v < values.size(); v += tc::kSkinValues)
+  {
+    const float* w = values.data() + v + tc::kMaxInfluences;
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    for (int k = 0; k < tc::kMaxInfluences; ++k)
+    {
+      skin.joints.push_back(int32_t(std::lround(values[v + size_t(k)])));
+      skin.weights.push_back(w[k] / sum);
+    }
+  }
+  return skin;
+}
+
+/// The largest distance between two point lists, relative to the bunny's diagonal.
+double relativeDistance(const std::vector<double>& a, const std::vector<double>& b)
+{
+  EXPECT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+  {
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+  }
+  return worst / bunnyAtlas().inputDiagonal;
+}
+} // namespace
+
+TEST_F(GltfExport, SkinnedAtlasKeepsItsSkinJointsAndKeyframedAnimation)
+{
+  const tc::Atlas& atlas = skinnedAtlas();
+  const std::string path = file("skinned.glb");
+  const std::vector<tc::GltfLod> lods = tc::writeGltf(path, atlas);
+  // The file: JOINTS_0 as bytes, WEIGHTS_0 summing to 1, one skin on every LOD, 5 channels (the
+  // hip's translation, the knee's rotation and translation on its node and on its copy).
+  const auto [gltf, bin] = glbChunks(readBytes(path));
+  expectBoundsHold(gltf, bin);
+  const auto& attributes = gltf["meshes"][0]["primitives"][0]["attributes"];
+  EXPECT_EQ(gltf["accessors"][size_t(attributes["JOINTS_0"])]["componentType"], 5121);
+  const auto& weights = gltf["accessors"][size_t(attributes["WEIGHTS_0"])];
+  const float* w = reinterpret_cast<const float*>(
+    bin.data() + size_t(gltf["bufferViews"][size_t(weights["bufferView"])].value("byteOffset", 0)));
+  for (size_t v = 0; v < size_t(weights["count"]); ++v)
+  {
+    ASSERT_NEAR(w[4 * v] + w[4 * v + 1] + w[4 * v + 2] + w[4 * v + 3], 1.0f, 1e-6f) << v;
+  }
+  ASSERT_EQ(gltf["skins"].size(), 1u);
+  EXPECT_EQ(gltf["skins"][0]["joints"].size(), 3u);
+  EXPECT_EQ(gltf["accessors"][size_t(gltf["skins"][0]["inverseBindMatrices"])]["type"], "MAT4");
+  for (size_t k = 0; k < lods.size(); ++k)
+  {
+    EXPECT_EQ(gltf["nodes"][k]["skin"], 0) << "LOD " << k;
+  }
+  ASSERT_EQ(gltf["animations"].size(), 1u);
+  EXPECT_EQ(gltf["animations"][0]["name"], "bend");
+  EXPECT_EQ(gltf["animations"][0]["channels"].size(), 5u);
+  for (const auto& sampler : gltf["animations"][0]["samplers"])
+  {
+    const auto& input = gltf["accessors"][size_t(sampler["input"])];
+    EXPECT_EQ(double(input["max"][0]), 2.0); // held to the duration
+    EXPECT_TRUE(input.contains("min"));
+  }
+  const std::vector<std::string> notes = tc::gltfExportNotes(atlas);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("sampled"), std::string::npos);
+  EXPECT_TRUE(tc::gltfExportNotes(bunnyAtlas()).empty());
+}
+
+TEST_F(GltfExport, AssimpPosesTheSkinnedFileAsJointGlobalsAndSkinPointsDo)
+{
+  const tc::Atlas& atlas = skinnedAtlas();
+  const std::string path = file("skinned.glb");
+  const std::vector<tc::GltfLod> lods = tc::writeGltf(path, atlas);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const aiMesh& mesh = *scene->mMeshes[0];
+  ASSERT_EQ(mesh.mNumBones, 3u);
+  for (unsigned b = 0; b < mesh.mNumBones; ++b)
+  {
+    EXPECT_GT(mesh.mBones[b]->mNumWeights, 0u) << mesh.mBones[b]->mName.C_Str();
+  }
+  const aiNode* hip = scene->mRootNode->FindNode("hip");
+  ASSERT_NE(hip, nullptr);
+  ASSERT_NE(hip->FindNode("knee"), nullptr);
+  ASSERT_NE(hip->FindNode("knee.bind2"), nullptr);
+  ASSERT_EQ(scene->mNumAnimations, 1u);
+  const aiAnimation& animation = *scene->mAnimations[0];
+  EXPECT_STREQ(animation.mName.C_Str(), "bend");
+  EXPECT_EQ(animation.mNumChannels, 3u); // one per animated node
+  const double ticksPerSecond = animation.mTicksPerSecond > 0 ? animation.mTicksPerSecond : 1.0;
+  EXPECT_NEAR(animation.mDuration / ticksPerSecond, 2.0, 1e-6);
+  // Posed by Assimp's data and by tc at the rest pose and two times, the second after the
+  // knee's last key.
+  const tc::RebuiltMesh rebuilt = tc::rebuildMesh(atlas, lods[0].chartLevels);
+  const tc::SkinWeights skin = normalizedSkin(rebuilt, tc::findAttribute(atlas, tc::kAtlasSkin));
+  const tc::Skeleton& skeleton = atlas.rig.skeleton;
+  const auto tcPose = [&](const tc::Animation* a, double seconds)
+  {
+    return tc::skinPoints(rebuilt.mesh.points, skin,
+      tc::skinningMatrices(skeleton, tc::jointGlobals(skeleton, a, seconds)));
+  };
+  EXPECT_LE(
+    relativeDistance(AssimpPoser(*scene, nullptr).pose(mesh, 0.0), tcPose(nullptr, 0)), 1e-5);
+  for (const double seconds : { 0.75, 1.8 })
+  {
+    const std::vector<double> read =
+      AssimpPoser(*scene, &animation).pose(mesh, seconds * ticksPerSecond);
+    EXPECT_LE(relativeDistance(read, tcPose(&atlas.rig.animations[0], seconds)), 1e-5)
+      << seconds << " s";
+    EXPECT_GT(relativeDistance(read, tcPose(nullptr, 0)), 1e-2) << "the animation moves it";
+  }
 }

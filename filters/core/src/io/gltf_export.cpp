@@ -7,6 +7,7 @@
 #include "tc/gim/geometry_image_mesh.h"
 #include "tc/io/png_write.h"
 
+#include "io/gltf_skin.h"
 #include "tc/io/temporary_file.h"
 
 #include <tiny_gltf.h>
@@ -148,44 +149,17 @@ namespace
 /// Appends `bytes` to the buffer at a 4-byte boundary and returns its buffer view.
 int addView(tinygltf::Model& model, const void* bytes, size_t n, int target)
 {
-  std::vector<unsigned char>& data = model.buffers[0].data;
-  data.resize((data.size() + 3) / 4 * 4, 0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = n;
-  view.target = target;
-  data.insert(data.end(), static_cast<const unsigned char*>(bytes),
-    static_cast<const unsigned char*>(bytes) + n);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
+  return detail::addGltfView(model, bytes, n, target);
 }
 
-/// A float accessor of `count` elements of `components` (1 .. 4), with its min and max when
-/// `bounds` (the spec requires them for POSITION).
+/// A float vertex attribute of `components` (1 .. 4), with its min and max when `bounds` (the
+/// spec requires them for POSITION).
 int addFloats(tinygltf::Model& model, const std::vector<float>& values, int components, bool bounds)
 {
   static const int kTypes[] = { TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3,
     TINYGLTF_TYPE_VEC4 };
-  tinygltf::Accessor a;
-  a.bufferView =
-    addView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = kTypes[components - 1];
-  a.count = values.size() / static_cast<size_t>(components);
-  if (bounds)
-  {
-    a.minValues.assign(components, std::numeric_limits<double>::max());
-    a.maxValues.assign(components, std::numeric_limits<double>::lowest());
-    for (size_t i = 0; i < values.size(); ++i)
-    {
-      const size_t k = i % static_cast<size_t>(components);
-      a.minValues[k] = std::min(a.minValues[k], double(values[i]));
-      a.maxValues[k] = std::max(a.maxValues[k], double(values[i]));
-    }
-  }
-  model.accessors.push_back(a);
-  return static_cast<int>(model.accessors.size()) - 1;
+  return detail::addGltfFloats(
+    model, values, kTypes[components - 1], components, bounds, TINYGLTF_TARGET_ARRAY_BUFFER);
 }
 
 template <typename Index>
@@ -281,6 +255,12 @@ void addMesh(tinygltf::Model& model, const Atlas& atlas, GltfLod& lod, size_t k)
     {
       p.attributes[semantic] = addFloats(model, values, atlas.attributes[a].components, false);
     }
+  }
+  const int32_t skin = findAttribute(atlas, kAtlasSkin);
+  if (!atlas.rig.empty() && skin >= 1)
+  {
+    detail::addGltfSkinAttributes(
+      model, rebuilt.attributes[size_t(skin) - 1], atlas.rig.skeleton.joints.size(), p);
   }
   p.indices = addIndices(model, m.triangles, m.numPoints());
   tinygltf::Mesh mesh;
@@ -402,6 +382,28 @@ void addMaterial(tinygltf::Model& model, const Atlas& atlas)
   model.materials.push_back(material);
 }
 
+bool isSkinned(const Atlas& atlas)
+{
+  return !atlas.rig.empty() && findAttribute(atlas, kAtlasSkin) >= 1;
+}
+
+/// The joints' nodes (their roots in the scene, beside the LODs: a skinned mesh's node
+/// transform is ignored, so the joints' globals are their own), skin 0 on every LOD's node, and
+/// the keyframed animations.
+void addRig(tinygltf::Model& model, const Rig& rig, size_t lodCount)
+{
+  const int firstJoint = static_cast<int>(model.nodes.size());
+  for (const int root : detail::addGltfSkeleton(model, rig))
+  {
+    model.scenes[0].nodes.push_back(root);
+  }
+  for (size_t k = 0; k < lodCount; ++k)
+  {
+    model.nodes[k].skin = 0;
+  }
+  detail::addGltfAnimations(model, rig, firstJoint);
+}
+
 tinygltf::Model makeModel(
   const Atlas& atlas, std::vector<GltfLod>& lods, GltfLayout layout, const Progress& progress)
 {
@@ -416,9 +418,18 @@ tinygltf::Model makeModel(
     progress.report(double(k + 1) / double(lods.size()));
   }
   addNodes(model, lods, atlas.inputDiagonal, layout);
+  if (isSkinned(atlas))
+  {
+    addRig(model, atlas.rig, lods.size());
+  }
   return model;
 }
 } // namespace
+
+std::vector<std::string> gltfExportNotes(const Atlas& atlas)
+{
+  return isSkinned(atlas) ? detail::gltfRigNotes(atlas.rig) : std::vector<std::string>{};
+}
 
 bool isGltfFileName(const std::string& path)
 {

@@ -32,6 +32,30 @@
 /// diagonal covers; value k is where LOD k + 1's error would grow to errorPixels pixels in a
 /// viewport viewportHeight pixels tall (0 for the coarsest, which stays drawn). Every node's extras
 /// also hold its LOD's "error" (input units), "errorFraction" (of the diagonal) and "triangles".
+///
+/// A skinned atlas (a rig with a skeleton and a kAtlasSkin attribute) also carries its skin:
+/// - every primitive has JOINTS_0 (unsigned byte below 256 joints, else unsigned short) and
+///   WEIGHTS_0 (float) from the Skin values rebuildMesh reads with each point. The weights are
+///   normalized to sum 1 in the file, as the Khronos specification requires, whereas
+///   tc::skinPoints (as Assimp) poses the weights as given: a file posed by a glTF viewer equals
+///   tc::skinPoints with each point's weights divided by their sum.
+/// - one node per joint, in Joint::parent's hierarchy, the roots in the scene beside the LOD
+///   nodes (glTF ignores a skinned mesh node's transform, so the joints' globals are those of
+///   tc::jointGlobals); each has the translation, rotation and scale of its restLocal (the
+///   polar decomposition tc::jointGlobals uses; a joint no animation moves whose restLocal
+///   shears keeps it as a matrix, allowed on a node nothing animates). Skin 0 lists the joints
+///   in the skeleton's order (JOINTS_0 ids are tc's joint ids) with their inverseBind
+///   (column-major in the file) and every LOD node uses it: the positions are the bind pose
+///   rebuildMesh gives, and the rest pose a viewer shows is tc::jointGlobals(skeleton, nullptr)'s.
+/// - a second joint of one node (Joint::sameNodeAs >= 0, its own inverseBind) is a copy of that
+///   node under the joint's parent, with the first joint's transform and keys, named
+///   "<name>.bind<j>" so that readers matching bones by name keep it apart: the skin poses
+///   exactly as tc::jointGlobals, which moves such a joint with its first.
+/// - every keyframed animation is one glTF animation of its name: per track and component one
+///   LINEAR sampler (times in seconds with their min and max; rotations as x, y, z, w, which
+///   glTF's LINEAR interpolates spherically), with a held key at the duration when the keys end
+///   before it, so that glTF's length (the last key) is the duration. Animations of sampled poses
+///   (affine proxy bones, which may shear) are not exported: gltfExportNotes says so.
 #pragma once
 
 #include "tc/common/progress.h"
@@ -78,14 +102,18 @@ struct GltfLod
 /// @throws InputError for options out of range or an atlas without charts or levelError
 std::vector<GltfLod> gltfLodChain(const Atlas& atlas, const GltfExportOptions& options);
 
+/// What writeGltf cannot put in the file for `atlas`, one line each: the rig's animations of
+/// sampled poses (see the file comment); empty when the file holds everything.
+std::vector<std::string> gltfExportNotes(const Atlas& atlas);
+
+/// Whether writeGltf takes the name `path`: it ends with .glb or .gltf, in any case.
+bool isGltfFileName(const std::string& path);
+
 /// Writes the chain as glTF 2.0 to `path`, binary when it ends with .glb, JSON with the buffer
 /// embedded as base64 when it ends with .gltf (through a temporary file renamed at the end: a
 /// failed write leaves no file and an older one intact), and returns the LODs written.
 /// @throws InputError for another extension, bad options or atlas, or any I/O failure; Aborted
 ///   from `progress`
-/// Whether writeGltf takes the name `path`: it ends with .glb or .gltf, in any case.
-bool isGltfFileName(const std::string& path);
-
 std::vector<GltfLod> writeGltf(const std::string& path, const Atlas& atlas,
   const GltfExportOptions& options = {}, const Progress& progress = {});
 } // namespace tc
