@@ -3,6 +3,7 @@
 // is, LOD by LOD, the mesh rebuildMesh draws at the same levels; the file keeps the glTF 2.0
 // rules a validator checks (GLB chunks, buffer and accessor bounds, POSITION min and max,
 // indices in range) and links the LODs by MSFT_lod.
+#include "assimp_poser.h"
 #include "pipeline_fixture.h"
 #include "temp_folder.h"
 
@@ -371,107 +372,6 @@ const tc::Atlas& skinnedAtlas()
   return atlas;
 }
 
-/// Poses an Assimp scene's meshes with its own data (the idea of test_scene_skin.cpp's
-/// AssimpBaker): node transforms with the channels interpolated at `ticks` (no animation: the
-/// nodes' rest transforms), then each vertex by its bones' weights.
-class AssimpPoser
-{
-public:
-  AssimpPoser(const aiScene& scene, const aiAnimation* animation)
-    : Scene_(scene)
-  {
-    for (unsigned c = 0; animation && c < animation->mNumChannels; ++c)
-    {
-      Channels_[animation->mChannels[c]->mNodeName.C_Str()] = animation->mChannels[c];
-    }
-  }
-
-  /// Mesh `mesh`'s points at `ticks`.
-  std::vector<double> pose(const aiMesh& mesh, double ticks)
-  {
-    walk(*Scene_.mRootNode, aiMatrix4x4(), ticks);
-    std::vector<aiVector3D> sum(mesh.mNumVertices, aiVector3D(0, 0, 0));
-    for (unsigned b = 0; b < mesh.mNumBones; ++b)
-    {
-      const aiBone& bone = *mesh.mBones[b];
-      const aiMatrix4x4 m = Globals_.at(bone.mName.C_Str()) * bone.mOffsetMatrix;
-      for (unsigned w = 0; w < bone.mNumWeights; ++w)
-      {
-        const aiVertexWeight& vw = bone.mWeights[w];
-        sum[vw.mVertexId] += (m * mesh.mVertices[vw.mVertexId]) * vw.mWeight;
-      }
-    }
-    std::vector<double> points;
-    for (const aiVector3D& p : sum)
-    {
-      points.insert(points.end(), { p.x, p.y, p.z });
-    }
-    return points;
-  }
-
-private:
-  template <typename Key>
-  static std::pair<unsigned, float> at(const Key* keys, unsigned n, double t)
-  {
-    unsigned i = 0;
-    while (i + 1 < n && t >= keys[i + 1].mTime)
-    {
-      ++i;
-    }
-    if (i + 1 >= n || t <= keys[i].mTime)
-    {
-      return { i, 0.0f };
-    }
-    return { i, float((t - keys[i].mTime) / (keys[i + 1].mTime - keys[i].mTime)) };
-  }
-
-  template <typename Key>
-  static aiVector3D lerp(const Key* keys, unsigned n, double t)
-  {
-    const auto [i, a] = at(keys, n, t);
-    return a > 0 ? keys[i].mValue * (1 - a) + keys[i + 1].mValue * a : keys[i].mValue;
-  }
-
-  aiMatrix4x4 local(const aiNode& node, double t) const
-  {
-    const auto it = Channels_.find(node.mName.C_Str());
-    if (it == Channels_.end())
-    {
-      return node.mTransformation;
-    }
-    const aiNodeAnim& c = *it->second;
-    aiVector3D p, s(1, 1, 1);
-    aiQuaternion q;
-    node.mTransformation.Decompose(s, q, p);
-    p = c.mNumPositionKeys ? lerp(c.mPositionKeys, c.mNumPositionKeys, t) : p;
-    s = c.mNumScalingKeys ? lerp(c.mScalingKeys, c.mNumScalingKeys, t) : s;
-    if (c.mNumRotationKeys)
-    {
-      const auto [i, a] = at(c.mRotationKeys, c.mNumRotationKeys, t);
-      q = c.mRotationKeys[i].mValue;
-      if (a > 0)
-      {
-        aiQuaternion::Interpolate(q, c.mRotationKeys[i].mValue, c.mRotationKeys[i + 1].mValue, a);
-      }
-      q.Normalize();
-    }
-    return aiMatrix4x4(s, q, p);
-  }
-
-  void walk(const aiNode& node, const aiMatrix4x4& parent, double t)
-  {
-    Globals_[node.mName.C_Str()] = parent * local(node, t);
-    for (unsigned c = 0; c < node.mNumChildren; ++c)
-    {
-      walk(*node.mChildren[c], Globals_[node.mName.C_Str()], t);
-    }
-  }
-
-  const aiScene& Scene_;
-  std::map<std::string, const aiNodeAnim*> Channels_;
-  std::map<std::string, aiMatrix4x4> Globals_;
-};
-
 /// The rebuilt mesh's Skin values as tc::SkinWeights, the weights divided by their sum as the
 /// file holds them.
 tc::SkinWeights normalizedSkin(const tc::RebuiltMesh& rebuilt, int32_t skinAttribute)
@@ -580,11 +480,12 @@ TEST_F(GltfExport, AssimpPosesTheSkinnedFileAsJointGlobalsAndSkinPointsDo)
       tc::skinningMatrices(skeleton, tc::jointGlobals(skeleton, a, seconds)));
   };
   EXPECT_LE(
-    relativeDistance(AssimpPoser(*scene, nullptr).pose(mesh, 0.0), tcPose(nullptr, 0)), 1e-5);
+    relativeDistance(tctest::AssimpPoser(*scene, nullptr).pose(mesh, 0.0), tcPose(nullptr, 0)),
+    1e-5);
   for (const double seconds : { 0.75, 1.8 })
   {
     const std::vector<double> read =
-      AssimpPoser(*scene, &animation).pose(mesh, seconds * ticksPerSecond);
+      tctest::AssimpPoser(*scene, &animation).pose(mesh, seconds * ticksPerSecond);
     EXPECT_LE(relativeDistance(read, tcPose(&atlas.rig.animations[0], seconds)), 1e-5)
       << seconds << " s";
     EXPECT_GT(relativeDistance(read, tcPose(nullptr, 0)), 1e-2) << "the animation moves it";
