@@ -491,3 +491,27 @@ TEST_F(GltfExport, AssimpPosesTheSkinnedFileAsJointGlobalsAndSkinPointsDo)
     EXPECT_GT(relativeDistance(read, tcPose(nullptr, 0)), 1e-2) << "the animation moves it";
   }
 }
+
+TEST_F(GltfExport, EveryLodOfASkinnedAtlasReadsBackAsRebuildMeshDrawsIt)
+{
+  // Issue 22's line for a skinned character: every level's triangles and rest positions.
+  const tc::Atlas& atlas = skinnedAtlas();
+  const std::string path = file("skinned_lods.glb");
+  tc::GltfExportOptions options;
+  options.layout = tc::GltfLayout::NamedNodes;
+  const std::vector<tc::GltfLod> lods = tc::writeGltf(path, atlas, options);
+  ASSERT_GE(lods.size(), 3u);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  for (size_t k = 0; k < lods.size(); ++k)
+  {
+    const aiNode* node = scene->mRootNode->FindNode(("TriChart_LOD" + std::to_string(k)).c_str());
+    ASSERT_NE(node, nullptr) << "LOD " << k;
+    ASSERT_EQ(node->mNumMeshes, 1u);
+    const aiMesh* mesh = scene->mMeshes[node->mMeshes[0]];
+    EXPECT_EQ(mesh->mNumBones, 3u) << "LOD " << k;
+    expectSameMesh(
+      mesh, tc::rebuildMesh(atlas, lods[k].chartLevels).mesh, "LOD " + std::to_string(k));
+  }
+}
