@@ -35,7 +35,7 @@ from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features, 
                        read_atlas, write_atlas, atlas_charts, build, TriChartError,
                        UntraceableError, ResourceError, estimate_memory, set_max_threads,
                        write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS,
-                       base_color_texture, read_skeleton, time_steps, animation_names,
+                       base_color_texture, read_skeleton, read_frames, time_steps, animation_names,
                        pose)
 
 

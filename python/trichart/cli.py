@@ -366,7 +366,7 @@ def _frame_figures(args):
     """The finest level of a skinned atlas posed at N times evenly over the animation (its
     rest pose first) against the source posed alike: the Hausdorff distance per frame."""
     from .TriChartIO import tcArrayNames
-    from .pipeline import (TriChartError, pose, prepare, read_atlas, read_mesh, rebuild,
+    from .pipeline import (TriChartError, pose, prepare, read_atlas, read_frames, rebuild,
                            surface_distance, time_steps)
 
     atlas = read_atlas(args.atlas)
@@ -379,8 +379,8 @@ def _frame_figures(args):
     frames = [None] + [steps[0] + (steps[-1] - steps[0]) * k / max(1, args.frames - 1)
                        for k in range(args.frames)]
     rows = []
-    for t in frames:
-        reference, _ = prepare(read_mesh(args.mesh, time=t, animation=args.animation))
+    for t, source in zip(frames, read_frames(args.mesh, frames, animation=args.animation)):
+        reference, _ = prepare(source)
         mesh = finest if t is None else pose(finest, t, animation=args.animation)
         _, f = surface_distance(mesh, reference, samples_per_mesh=args.samples)
         rows.append({"time": t, "hausdorff": f["hausdorff"], "diagonal": f["diagonal"],

@@ -212,10 +212,14 @@ def _mesh_reader(path, animation, bind_pose, proxy_bones=True):
 
 
 def _run_at(reader, time, label, progress):
+    info = reader.GetOutputInformation(0)
+    key = vtkStreamingDemandDrivenPipeline.UPDATE_TIME_STEP()
     if time is not None:
         reader.UpdateInformation()
-        reader.GetOutputInformation(0).Set(
-            vtkStreamingDemandDrivenPipeline.UPDATE_TIME_STEP(), float(time))
+        info.Set(key, float(time))
+    elif info.Has(key):  # back to the rest pose after a posed read
+        info.Remove(key)
+        reader.Modified()
     return run(reader, label, progress)
 
 
@@ -232,6 +236,15 @@ def read_mesh(path, progress=None, time=None, animation=None, bind_pose=False,
     reader = _mesh_reader(path, animation, bind_pose, proxy_bones)
     _run_at(reader, time, "read", progress)
     return _output(reader)
+
+
+def read_frames(path, times, animation=None, progress=None):
+    """read_mesh at each of `times` (None: the rest pose), one vtkPolyData each, through one
+    reader: the file is read, and a sequence's proxy bones fitted, once for all of them."""
+    reader = _mesh_reader(path, animation, False)
+    for when in times:
+        _run_at(reader, when, "read", progress)
+        yield _output(reader)
 
 
 def read_skeleton(path, time=None, animation=None):

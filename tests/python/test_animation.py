@@ -249,3 +249,14 @@ def _first_scene_mesh(mesh):
     surface.SetInputConnection(lod0.GetOutputPort())
     surface.Update()
     return surface.GetOutput()
+
+
+def test_frames_read_through_one_reader_are_each_as_read_alone(shared_data):
+    """read_frames poses one reader at each time; the rest pose after a posed one is the rest
+    pose again, not the last pose kept."""
+    import numpy as np
+    glb = shared_data / "skinned" / "wuson" / "wuson.glb"
+    posed, rest, later = trichart.read_frames(glb, [0.5, None, 1.0], animation=1)
+    assert np.array_equal(_points(rest), _points(trichart.read_mesh(glb)))
+    assert np.array_equal(_points(later), _points(trichart.read_mesh(glb, time=1.0, animation=1)))
+    assert not np.array_equal(_points(posed), _points(rest))
