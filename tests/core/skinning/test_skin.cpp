@@ -2,6 +2,8 @@
 #include "tc/common/errors.h"
 #include "tc/skinning/skin.h"
 
+#include "skin_fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,14 +11,7 @@
 
 namespace
 {
-tc::Matrix4 translation(double x, double y, double z)
-{
-  tc::Matrix4 m = tc::identityMatrix();
-  m[3] = x;
-  m[7] = y;
-  m[11] = z;
-  return m;
-}
+using tctest::translation;
 
 /// Two joints: a root at the origin and a child one unit up x; the child turns about z by a
 /// quarter turn over one second.

@@ -7,6 +7,8 @@
 #include "tc/gim/path_tracing.h"
 #include "tc/skinning/skinned_boxes.h"
 
+#include "skin_fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,14 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// The width of a joint's Gaussian weight, as a fraction of the chain.
 constexpr double kWidth = 0.1;
 
-tc::Matrix4 translation(double x, double y, double z)
-{
-  tc::Matrix4 m = tc::identityMatrix();
-  m[3] = x;
-  m[7] = y;
-  m[11] = z;
-  return m;
-}
+using tctest::translation;
 
 /// A quaternion (w, x, y, z) turning by `degrees` about unit `axis`.
 std::array<double, 4> turn(double degrees, const std::array<double, 3>& axis)
