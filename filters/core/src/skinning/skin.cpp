@@ -15,6 +15,11 @@ namespace tc
 {
 namespace
 {
+/// Influences (joint, weight), largest weight first; ties by joint, so that the order does not
+/// depend on the file's.
+constexpr auto heavierFirst = [](const auto& a, const auto& b)
+{ return a.second != b.second ? a.second > b.second : a.first < b.first; };
+
 using RowMatrix = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
 
 Eigen::Map<const RowMatrix> view(const Matrix4& m)
@@ -129,10 +134,7 @@ void addSkinPoint(
     std::remove_if(influences.begin(), influences.end(),
       [](const auto& jw) { return !(jw.second > 0.0f && std::isfinite(jw.second)); }),
     influences.end());
-  // Largest first; ties by joint so that the result does not depend on the file's order.
-  std::sort(influences.begin(), influences.end(),
-    [](const auto& a, const auto& b)
-    { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+  std::sort(influences.begin(), influences.end(), heavierFirst);
   const bool cut = influences.size() > static_cast<size_t>(kMaxInfluences);
   if (cut)
   {
@@ -221,9 +223,7 @@ PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend
       n = std::max(n, slot + 1);
     }
   }
-  std::sort(merged.begin(), merged.begin() + n,
-    [](const auto& a, const auto& b)
-    { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+  std::sort(merged.begin(), merged.begin() + n, heavierFirst);
   double kept = 0.0;
   for (int k = 0; k < std::min(n, kMaxInfluences); ++k)
   {
