@@ -23,7 +23,9 @@ fi
 echo "test: ctest"
 cd "$build"
 status=0
-xvfb-run -a -s '-screen 0 1280x1024x24' ctest --output-on-failure -j 2 "$@" || status=$?
+# -noreset: Xvfb otherwise resets itself whenever its last client leaves, and a render window
+# that connects during the reset fails ("bad X server connection"), most often on a busy machine.
+xvfb-run -a -s '-screen 0 1280x1024x24 -noreset' ctest --output-on-failure -j 2 "$@" || status=$?
 
 # The sanitizer build lives here, not in scripts/setup.sh: it is for testing only, installs
 # nothing, and a user who sets up to use TriChart does not wait for it. It runs even when the

@@ -60,7 +60,7 @@ def _reexec_under_xvfb():
     if not xvfb or os.environ.get("TRICHART_UNDER_XVFB"):
         return False
     env = dict(os.environ, TRICHART_UNDER_XVFB="1")
-    os.execvpe(xvfb, [xvfb, "-a", "-s", "-screen 0 1280x1024x24", sys.executable, "-m",
+    os.execvpe(xvfb, [xvfb, "-a", "-s", "-screen 0 1280x1024x24 -noreset", sys.executable, "-m",
                       "trichart"] + sys.argv[1:], env)
     return True
 

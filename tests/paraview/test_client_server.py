@@ -197,9 +197,9 @@ def main():
     command = ["timeout", "--foreground", "--kill-after=5", str(SERVER_SECONDS), pvserver,
                "--force-offscreen-rendering", f"--server-port={port}"]
     if shutil.which("xvfb-run"):
-        # A display of its own: two processes opening render windows on one Xvfb at once fail
-        # to connect about one time in five (see tests/paraview/CMakeLists.txt, x_display).
-        command = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24"] + command
+        # A display of its own, so that the server's windows never wait on the client's; -noreset
+        # as in scripts/test.sh (a window that connects while Xvfb resets fails).
+        command = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset"] + command
     server = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               start_new_session=True, preexec_fn=end_with_parent)
     try:
