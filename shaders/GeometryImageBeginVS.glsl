@@ -16,6 +16,13 @@
   vec4 tcP = vec4(tcSampleValue.xyz, 1.0);
   vec4 tcNormalValue = texelFetch(tcNormals, tcTexel);
   vec3 tcN = tcNormalValue.xyz;
+  if (tcSkinning != 0)
+  {
+    // The texel's own skin: the two charts of a shared side hold the same one, so both pose
+    // their copies of a side sample alike and the posed atlas stays closed.
+    tcSkin(tcEntry.y * tcJointCount, texelFetch(tcSkinJoints, tcTexel),
+      texelFetch(tcSkinWeights, tcTexel), tcP, tcN);
+  }
   vec4 tcRow0 = texelFetch(tcInstances, 3 * tcEntry.y);
   vec4 tcRow1 = texelFetch(tcInstances, 3 * tcEntry.y + 1);
   vec4 tcRow2 = texelFetch(tcInstances, 3 * tcEntry.y + 2);

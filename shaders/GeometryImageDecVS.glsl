@@ -16,6 +16,10 @@ uniform int tcStitching;            // 0 draws every chart unstitched (to show w
 uniform int tcColorMode;            // 0 the actor's colour, 1 per chart, 2 per level, 3 attribute,
                                     // 4 texture, 5 vertex colours (tcLODMapper::ColorModes)
 uniform samplerBuffer tcColors;     // the lookup table, 256 colours over tcRange
+uniform int tcSkinning;             // 1: pose by the skin (shaders/SkinningVS.glsl)
+uniform samplerBuffer tcSkinJoints; // per atlas texel: its 4 joints (integers as floats)
+uniform samplerBuffer tcSkinWeights; // and their weights
+uniform int tcJointCount;           // joints per palette: instance k's starts at joint k * this
 uniform vec2 tcRange;
 
 out vec3 tcColorVSOutput;

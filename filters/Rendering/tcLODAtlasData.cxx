@@ -263,7 +263,7 @@ void FixedLevels(const tc::Atlas& atlas, const std::vector<int32_t>& chartLevels
 
 void ViewLevels(vtkRenderer* ren, vtkActor* act, const tc::LodCharts& charts,
   const std::vector<double>& instances, const tc::LodOptions& options, size_t nc,
-  std::vector<int32_t>& levels)
+  std::vector<int32_t>& levels, const float* posedBox, const float* posedArea)
 {
   int width = 0, height = 0;
   ren->GetTiledSize(&width, &height);
@@ -282,7 +282,16 @@ void ViewLevels(vtkRenderer* ren, vtkActor* act, const tc::LodCharts& charts,
       view.height = std::max(1, height);
       vtkMatrix4x4::Multiply4x4(
         toClip, instances.data() + 16 * static_cast<size_t>(i), view.worldToClip.data());
-      tc::selectLevels(charts, view, options, levels.data() + static_cast<size_t>(i) * nc);
+      int32_t* out = levels.data() + static_cast<size_t>(i) * nc;
+      if (posedBox)
+      {
+        tc::selectLevels(charts, posedBox + static_cast<size_t>(i) * nc * 12,
+          posedArea + static_cast<size_t>(i) * nc, view, options, out);
+      }
+      else
+      {
+        tc::selectLevels(charts, view, options, out);
+      }
     },
     tc::Progress(), 1);
 }

@@ -77,10 +77,11 @@ void FixedLevels(const tc::Atlas& atlas, const std::vector<int32_t>& chartLevels
 
 /// The view-dependent levels (eq. 6 and 7, tc::selectLevels) of the `nc` charts in every
 /// instance (16 doubles each, row-major), for the renderer's camera and viewport and the actor's
-/// matrix; in parallel over the instances.
+/// matrix; in parallel over the instances. With `posedBox` and `posedArea` (instances x nc x 12
+/// and instances x nc: each instance's posed boxes, tcLODSkinning.h) instead of the charts'.
 void ViewLevels(vtkRenderer* ren, vtkActor* act, const tc::LodCharts& charts,
   const std::vector<double>& instances, const tc::LodOptions& options, size_t nc,
-  std::vector<int32_t>& levels);
+  std::vector<int32_t>& levels, const float* posedBox = nullptr, const float* posedArea = nullptr);
 
 } // namespace tcvtk::lod
 

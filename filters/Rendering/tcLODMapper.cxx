@@ -3,6 +3,7 @@
 
 #include "tcAtlasConversion.h"
 #include "tcLODAtlasData.h"
+#include "tcLODSkinning.h"
 
 #include "tc/common/array_names.h"
 #include "tc/gim/atlas.h"
@@ -16,6 +17,7 @@
 #include "tcGeometryImageDecVS.h"
 #include "tcGeometryImageNormalVS.h"
 #include "tcGeometryImagePickFS.h"
+#include "tcSkinningVS.h"
 
 #include <vtkActor.h>
 #include <vtkCommand.h>
@@ -126,7 +128,8 @@ struct Replacement
   const char* tag;
   const char* text;
 };
-const std::array<Replacement, 7> kReplacements{ {
+const std::array<Replacement, 8> kReplacements{ {
+  { vtkShader::Vertex, "//VTK::PositionVC::Dec", tcSkinningVS },
   { vtkShader::Vertex, "//VTK::PositionVC::Dec", tcGeometryImageDecVS },
   { vtkShader::Vertex, "//VTK::Light::Dec", tcGeometryImageNormalVS },
   { vtkShader::Vertex, "//VTK::CustomBegin::Impl", tcGeometryImageBeginVS },
@@ -153,8 +156,8 @@ void Substitute(std::map<vtkShader::Type, vtkShader*>& shaders, vtkShader::Type 
 }
 
 /// The shader's samplers of the buffer textures, in the order of Internals::textures().
-const std::array<const char*, 7> kTextureUniforms{ "tcPositions", "tcNormals", "tcOrigins",
-  "tcCharts", "tcDrawList", "tcInstances", "tcColors" };
+const std::array<const char*, 10> kTextureUniforms{ "tcPositions", "tcNormals", "tcOrigins",
+  "tcCharts", "tcDrawList", "tcInstances", "tcColors", "tcSkinJoints", "tcSkinWeights", "tcBones" };
 
 /// What a colour mode reads from the atlas: the attribute (-1: none) and how it rides in the
 /// texels, or why the mode cannot be drawn (`missing`, "" when it can).
@@ -293,11 +296,22 @@ struct tcLODMapper::Internals
   double drawListSeconds = 0.0;
 
   BufferTexture positions, normals, origins, chartTable, drawList, instanceRows, colors;
+  BufferTexture skinJoints, skinWeights, bones;
   /// The buffer textures, in the order of kTextureUniforms.
-  std::array<BufferTexture*, 7> textures()
+  std::array<BufferTexture*, 10> textures()
   {
-    return { &positions, &normals, &origins, &chartTable, &drawList, &instanceRows, &colors };
+    return { &positions, &normals, &origins, &chartTable, &drawList, &instanceRows, &colors,
+      &skinJoints, &skinWeights, &bones };
   }
+
+  /// Skinning: the skinned boxes, the instances' poses and palettes (tcLODSkinning.h).
+  SkinnedAtlas skinned;
+  std::vector<double> instanceTimes;   // empty: AnimationTime for all
+  std::vector<int> instanceAnimations; // empty: Animation for all
+  vtkTimeStamp poseTime;               // when the palettes were last computed
+  bool posed = false;                  // whether they pose this frame (GetSkinned)
+  vtkTimeStamp bonesTime;              // when they last went up
+  std::string warnedAnimation;         // the unknown Animation last reported
   vtkTimeStamp uploadTime;
   std::string uploadedAttribute; // the ColorAttribute asked for at the last upload
   int uploadedMode = -1;         // and the ColorMode
@@ -347,6 +361,7 @@ tcLODMapper::~tcLODMapper()
     window->PopContext();
   }
   this->SetColorAttribute(nullptr);
+  this->SetAnimation(nullptr);
 }
 
 void tcLODMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -362,6 +377,9 @@ void tcLODMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorAttribute: " << (this->ColorAttribute ? this->ColorAttribute : "(none)")
      << "\n";
   os << indent << "Instances: " << this->GetNumberOfInstances() << "\n";
+  os << indent << "Skinning: " << this->Skinning << "\n";
+  os << indent << "Animation: " << (this->Animation ? this->Animation : "(first)") << "\n";
+  os << indent << "AnimationTime: " << this->AnimationTime << "\n";
 }
 
 int tcLODMapper::FillInputPortInformation(int, vtkInformation* info)
@@ -439,6 +457,46 @@ void tcLODMapper::SetInstanceMatrices(vtkDataArray* matrices)
   this->Internal->instanceTime.Modified();
   this->Internal->haveSelection = false;
   this->Modified();
+}
+
+void tcLODMapper::SetInstanceTimes(vtkDataArray* seconds)
+{
+  std::vector<double> values;
+  for (vtkIdType t = 0; seconds && t < seconds->GetNumberOfTuples(); ++t)
+  {
+    values.push_back(seconds->GetComponent(t, 0));
+    if (!std::isfinite(values.back()))
+    {
+      vtkErrorMacro("SetInstanceTimes: time " << t
+                                              << " is NaN or infinite; the times are "
+                                                 "unchanged.");
+      return;
+    }
+  }
+  if (values != this->Internal->instanceTimes)
+  {
+    this->Internal->instanceTimes = values;
+    this->Modified();
+  }
+}
+
+void tcLODMapper::SetInstanceAnimations(vtkIntArray* animations)
+{
+  std::vector<int> values;
+  for (vtkIdType t = 0; animations && t < animations->GetNumberOfTuples(); ++t)
+  {
+    values.push_back(animations->GetValue(t * animations->GetNumberOfComponents()));
+  }
+  if (values != this->Internal->instanceAnimations)
+  {
+    this->Internal->instanceAnimations = values;
+    this->Modified();
+  }
+}
+
+bool tcLODMapper::GetSkinned() const
+{
+  return this->Internal->posed;
 }
 
 int tcLODMapper::GetNumberOfInstances() const
@@ -532,6 +590,7 @@ bool tcLODMapper::UpdateAtlas()
   {
     // Refuses levels above 15 (the draw list packs levels in 4 bits) and malformed errors.
     in.charts = tc::LodCharts::fromAtlas(in.atlas);
+    PrepareSkinnedAtlas(in.atlas, in.skinned);
   }
   catch (const std::exception& e)
   {
@@ -572,6 +631,10 @@ void tcLODMapper::UploadAtlas(vtkRenderer* ren)
   in.origins.Upload(origins, true);
   in.chartTable.Upload(charts, true);
   in.instanceRows.Upload(InstanceRows(in.instances), false);
+  const int skin = tc::findAttribute(atlas, tc::kAtlasSkin);
+  const SkinTexels skinTexels = in.skinned.valid ? PackSkin(atlas, skin) : SkinTexels();
+  in.skinJoints.Upload(skinTexels.joints, false);
+  in.skinWeights.Upload(skinTexels.weights, false);
   in.attributeRange = source.color == TexelColor::Scalar
     ? AttributeRange(atlas, texels.position)
     : std::array<double, 2>{ VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
@@ -600,6 +663,60 @@ void tcLODMapper::UploadTexture(vtkOpenGLRenderWindow* window, bool baseColor)
     const_cast<uint8_t*>(image ? image->rgba.data() : white));
 }
 
+void tcLODMapper::UpdatePalettes()
+{
+  Internals& in = *this->Internal;
+  const bool posed = this->Skinning && in.skinned.valid;
+  if (posed == in.posed && in.poseTime > this->GetMTime() && in.poseTime > in.instanceTime &&
+    in.poseTime > in.grid->GetMTime())
+  {
+    return;
+  }
+  in.posed = posed;
+  in.poseTime.Modified();
+  if (!posed)
+  {
+    in.skinned.palettes.clear();
+    return;
+  }
+  std::string error;
+  const int chosen = ChooseAnimation(in.atlas, this->Animation ? this->Animation : "", error);
+  if (!error.empty() && error != in.warnedAnimation)
+  {
+    vtkErrorMacro("Animation: " << error << "; the bind pose is drawn.");
+  }
+  in.warnedAnimation = error;
+  const size_t instances = static_cast<size_t>(this->GetNumberOfInstances());
+  const int animationCount = static_cast<int>(in.atlas.rig.animations.size());
+  std::vector<int> animations(instances, chosen);
+  std::vector<double> times(instances, this->AnimationTime);
+  for (size_t i = 0; i < instances; ++i)
+  {
+    if (i < in.instanceAnimations.size() && in.instanceAnimations[i] >= 0)
+    {
+      // An index past the rig's animations poses the bind pose, as an unknown name does.
+      animations[i] = in.instanceAnimations[i] < animationCount ? in.instanceAnimations[i] : -1;
+    }
+    if (i < in.instanceTimes.size())
+    {
+      times[i] = in.instanceTimes[i];
+    }
+  }
+  PoseInstances(in.atlas, animations, times, in.skinned);
+}
+
+void tcLODMapper::UploadBones()
+{
+  Internals& in = *this->Internal;
+  // Released with the other graphics resources (texture 0): up again, posed or not.
+  if (in.bones.texture != 0 && in.bonesTime > in.poseTime)
+  {
+    return;
+  }
+  in.bones.Upload(in.skinned.palettes, false);
+  in.bonesTime.Modified();
+}
+
 void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
 {
   Internals& in = *this->Internal;
@@ -626,7 +743,9 @@ void tcLODMapper::SelectLevels(vtkRenderer* ren, vtkActor* act)
     options.bias = this->LODBias;
     options.errorPixels = this->ErrorTarget;
     options.cull = this->Culling;
-    ViewLevels(ren, act, in.charts, in.instances, options, nc, in.levels);
+    ViewLevels(ren, act, in.charts, in.instances, options, nc, in.levels,
+      in.posed ? in.skinned.posedBox.data() : nullptr,
+      in.posed ? in.skinned.posedArea.data() : nullptr);
   }
   const auto selected = std::chrono::steady_clock::now();
   // The levels above are clamped to each chart's range, which is all buildDrawList checks.
@@ -654,6 +773,8 @@ void tcLODMapper::Render(vtkRenderer* ren, vtkActor* act)
   this->WarnAboutSettings(ren, act);
   this->UseWindow(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()));
   this->UploadAtlas(ren);
+  this->UpdatePalettes();
+  this->UploadBones();
   this->SelectLevels(ren, act);
   tcLODGridMapper* grid = this->Internal->gridMapper;
   grid->SetClippingPlanes(this->ClippingPlanes);
@@ -925,7 +1046,7 @@ void tcLODGridMapper::SetFrameUniforms(vtkShaderProgram* program, vtkRenderer* r
   std::array<double, 2> range;
   const int colorMode = this->UploadColorTable(range);
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  const std::array<BufferTexture*, 7> textures = in.textures();
+  const auto textures = in.textures();
   for (size_t t = 0; t < textures.size(); ++t)
   {
     program->SetUniformi(kTextureUniforms[t], textures[t]->Activate(window));
@@ -933,6 +1054,8 @@ void tcLODGridMapper::SetFrameUniforms(vtkShaderProgram* program, vtkRenderer* r
   in.texture->Activate();
   program->SetUniformi("tcTexture", in.texture->GetTextureUnit());
   program->SetUniformi("tcStitching", this->Owner->Stitching ? 1 : 0);
+  program->SetUniformi("tcSkinning", in.posed ? 1 : 0);
+  program->SetUniformi("tcJointCount", in.skinned.joints);
   program->SetUniformi("tcColorMode", colorMode);
   const float rangeValues[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
   program->SetUniform2f("tcRange", rangeValues);
@@ -1005,11 +1128,16 @@ double* tcLODMapper::GetBounds()
     vtkMath::UninitializeBounds(this->Bounds);
     return this->Bounds;
   }
-  if (in.boundsTime < in.grid->GetMTime() || in.boundsTime < in.instanceTime)
+  this->UpdatePalettes();
+  if (in.boundsTime < in.grid->GetMTime() || in.boundsTime < in.instanceTime ||
+    in.boundsTime < in.poseTime)
   {
     try
     {
-      const std::array<double, 6> b = tc::drawnBounds(in.atlas, in.instances);
+      // Posed, the bounds of the posed boxes: they hold the posed surface (posing every sample
+      // of every instance on the CPU for exact bounds would cost what the GPU saves).
+      const std::array<double, 6> b =
+        in.posed ? PosedBounds(in.skinned, in.instances) : tc::drawnBounds(in.atlas, in.instances);
       std::copy(b.begin(), b.end(), in.bounds);
     }
     catch (const std::exception& e)

@@ -37,6 +37,15 @@
  * (tc::LodDrawList): LocateCell maps it to the instance, chart, level and grid triangle of the
  * last frame drawn. A point selection draws nothing (a warning says so).
  *
+ * Skinning (Feng et al. 2010, 5.2, 6.1, 6.2): an atlas with a Skin attribute and a rig (built
+ * from a skinned file or a deforming sequence) is posed by linear blend skinning in the vertex
+ * shader (shaders/SkinningVS.glsl), each instance at its own time (SetInstanceTimes) of its own
+ * animation (SetInstanceAnimations), with the skinning matrices of every instance computed on the
+ * CPU each frame and read from a buffer texture. Shared sides carry the same skin in both charts,
+ * so a posed atlas stays crack-free. LOD selection and culling use skinned boxes
+ * (tc::fitSkinnedBoxes, fitted when the atlas arrives): their corners are skinned by the
+ * instance's matrices, so that the box holds the chart in every pose.
+ *
  * Bounds (GetBounds, hence ResetCamera): those of the drawn surface, from the finest samples in
  * every instance (tc::drawnBounds); LOD selection and culling use the charts' oriented boxes.
  *
@@ -161,6 +170,42 @@ public:
   int GetNumberOfInstances() const;
 
   ///@{
+  /// Pose an atlas that has a Skin attribute and a rig (default on); off, or without them, the
+  /// atlas is drawn in its bind pose.
+  vtkSetMacro(Skinning, bool);
+  vtkGetMacro(Skinning, bool);
+  vtkBooleanMacro(Skinning, bool);
+  ///@}
+
+  ///@{
+  /// The animation of the rig that poses every instance without an animation of its own: its
+  /// name, or its index as digits; "" (default) the first. An unknown name is reported (the
+  /// message lists the animations) and the bind pose is drawn.
+  vtkSetStringMacro(Animation);
+  vtkGetStringMacro(Animation);
+  ///@}
+
+  ///@{
+  /// The time in seconds of the animation at which every instance without a time of its own is
+  /// posed (default 0). Times outside [0, duration] hold the first or last key, as the mesh
+  /// reader's poses do.
+  vtkSetMacro(AnimationTime, double);
+  vtkGetMacro(AnimationTime, double);
+  ///@}
+
+  /// A time in seconds per instance (one component, one tuple per instance, e.g. a crowd where
+  /// each character is at its own phase); nullptr (default): AnimationTime for all. The array is
+  /// copied; instances past its end use AnimationTime.
+  void SetInstanceTimes(vtkDataArray* seconds);
+
+  /// An animation index of the rig per instance (one component, one tuple per instance; -1 and
+  /// instances past the end: Animation); nullptr (default): Animation for all. Copied.
+  void SetInstanceAnimations(vtkIntArray* animations);
+
+  /// Whether the last frame drawn was posed (Skinning on and an atlas with a skin and a rig).
+  bool GetSkinned() const;
+
+  ///@{
   /// Read back every vertex the next frames draw (transform feedback): GetCapturedVertices then
   /// holds 8 floats per drawn triangle corner, in draw order: the model position x, y, z, the
   /// chart, then the grid sample i, j (before stitching), the level and the instance.
@@ -216,6 +261,9 @@ protected:
   int ColorMode = ColorByActor;
   char* ColorAttribute = nullptr;
   bool CaptureVertices = false;
+  bool Skinning = true;
+  char* Animation = nullptr;
+  double AnimationTime = 0.0;
 
 private:
   tcLODMapper(const tcLODMapper&) = delete;
@@ -230,6 +278,8 @@ private:
   void UploadAtlas(vtkRenderer* ren);
   void UploadTexture(vtkOpenGLRenderWindow* window, bool baseColor);
   void SelectLevels(vtkRenderer* ren, vtkActor* act);
+  void UpdatePalettes();
+  void UploadBones();
   void WarnAboutSettings(vtkRenderer* ren, vtkActor* act);
   void UseWindow(vtkOpenGLRenderWindow* window);
   void WindowDeleted(vtkObject* window, unsigned long event, void* data);

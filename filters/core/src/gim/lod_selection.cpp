@@ -191,22 +191,22 @@ void errorBlock(const float* errors, int32_t stride, const float* worldAreas,
 }
 
 /// Levels of charts [begin, end), end - begin <= kBlock. Scratch on the stack (about 22 KB).
-void selectBlock(
-  const LodCharts& charts, const Frame& frame, int32_t begin, int32_t end, int32_t* levels)
+void selectBlock(const LodCharts& charts, const float* box, const float* worldArea,
+  const Frame& frame, int32_t begin, int32_t end, int32_t* levels)
 {
   alignas(16) float clip[kBlock * 16];
   float projectedArea[kBlock];
   int32_t refinable[kBlock];
   const int32_t count = end - begin;
-  transformBlock(charts.box.data() + static_cast<size_t>(begin) * 12, frame, count, clip);
-  rulesBlock(clip, charts.worldArea.data() + begin, charts.maxLevel.data() + begin, frame, count,
-    levels + begin, projectedArea, refinable);
+  transformBlock(box + static_cast<size_t>(begin) * 12, frame, count, clip);
+  rulesBlock(clip, worldArea + begin, charts.maxLevel.data() + begin, frame, count, levels + begin,
+    projectedArea, refinable);
   if (frame.errorMode && charts.stride > 0)
   {
     errorBlock(
       charts.levelError.data() + static_cast<size_t>(begin) * static_cast<size_t>(charts.stride),
-      charts.stride, charts.worldArea.data() + begin, charts.maxLevel.data() + begin, projectedArea,
-      refinable, frame, count, levels + begin);
+      charts.stride, worldArea + begin, charts.maxLevel.data() + begin, projectedArea, refinable,
+      frame, count, levels + begin);
   }
 }
 
@@ -303,6 +303,12 @@ LodCharts LodCharts::fromAtlas(const Atlas& atlas)
 void selectLevels(
   const LodCharts& charts, const LodView& view, const LodOptions& options, int32_t* levels)
 {
+  selectLevels(charts, charts.box.data(), charts.worldArea.data(), view, options, levels);
+}
+
+void selectLevels(const LodCharts& charts, const float* box, const float* worldArea,
+  const LodView& view, const LodOptions& options, int32_t* levels)
+{
   checkCharts(charts);
   if (!(view.width > 0.0) || !(view.height > 0.0))
   {
@@ -330,7 +336,7 @@ void selectLevels(
   const auto block = [&](int64_t b)
   {
     const int32_t begin = static_cast<int32_t>(b) * kBlock;
-    selectBlock(charts, frame, begin, std::min(n, begin + kBlock), levels);
+    selectBlock(charts, box, worldArea, frame, begin, std::min(n, begin + kBlock), levels);
   };
   if (n >= kParallelCharts)
   {

@@ -311,6 +311,25 @@ std::vector<Matrix4> skinningMatrices(const Skeleton& skeleton, const std::vecto
   return matrices;
 }
 
+std::vector<Matrix4> poseMatrices(const Rig& rig, int animation, double seconds)
+{
+  const bool animated = animation >= 0 && animation < static_cast<int>(rig.animations.size());
+  return skinningMatrices(rig.skeleton,
+    jointGlobals(
+      rig.skeleton, animated ? &rig.animations[static_cast<size_t>(animation)] : nullptr, seconds));
+}
+
+void appendPaletteRows(const std::vector<Matrix4>& matrices, std::vector<float>& palette)
+{
+  for (const Matrix4& m : matrices)
+  {
+    for (int k = 0; k < kPaletteFloats; ++k)
+    {
+      palette.push_back(static_cast<float>(m[static_cast<size_t>(k)]));
+    }
+  }
+}
+
 std::vector<double> skinPoints(const std::vector<double>& bindPoints, const SkinWeights& skin,
   const std::vector<Matrix4>& matrices)
 {

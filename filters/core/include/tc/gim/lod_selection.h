@@ -107,6 +107,12 @@ struct LodOptions
 void selectLevels(
   const LodCharts& charts, const LodView& view, const LodOptions& options, int32_t* levels);
 
+/// selectLevels with the boxes (#C x 12, LodCharts::box's layout) and world areas (#C) read from
+/// `box` and `worldArea` instead of charts.box and charts.worldArea: the posed boxes of a skinned
+/// instance (tc::poseLodBoxes), which change every frame while the rest of `charts` does not.
+void selectLevels(const LodCharts& charts, const float* box, const float* worldArea,
+  const LodView& view, const LodOptions& options, int32_t* levels);
+
 /// The draw list: one entry per drawn (instance, chart), grouped by level.
 ///
 /// Cell ids (what a picking pass writes for a drawn triangle): the triangles of the frame are

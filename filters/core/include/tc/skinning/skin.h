@@ -157,6 +157,18 @@ std::vector<Matrix4> jointGlobals(
 std::vector<Matrix4> skinningMatrices(
   const Skeleton& skeleton, const std::vector<Matrix4>& globals);
 
+/// The skinning matrices of `rig` at `seconds` of its animation `animation` (an index of
+/// rig.animations; -1 or out of range: the rest pose): skinningMatrices(jointGlobals(...)).
+std::vector<Matrix4> poseMatrices(const Rig& rig, int animation, double seconds);
+
+/// Floats per joint of a palette: the three rows of its skinning matrix (the last row of an
+/// affine matrix, 0 0 0 1, is left out).
+constexpr int kPaletteFloats = 12;
+
+/// Appends the first three rows of every matrix of `matrices` to `palette` as floats, joint
+/// after joint: the palette a vertex shader skins with (shaders/SkinningVS.glsl).
+void appendPaletteRows(const std::vector<Matrix4>& matrices, std::vector<float>& palette);
+
 /// Poses `bindPoints` (#V x 3) by linear blend skinning: p' = sum_k w_k M[j_k] p.
 /// @throws tc::InputError when the sizes of the points, the skin and the matrices disagree
 std::vector<double> skinPoints(const std::vector<double>& bindPoints, const SkinWeights& skin,

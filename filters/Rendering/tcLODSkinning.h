@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file tcLODSkinning.h
+ * @brief What tcLODMapper computes on the CPU to pose a skinned atlas (Feng et al. 2010, 5.2,
+ * 6.1): the skin packed for the shader's buffer textures, each instance's skinning matrices per
+ * frame, and the instance's posed chart boxes for LOD selection. Private to the Rendering
+ * module; no OpenGL here.
+ */
+#ifndef tcLODSkinning_h
+#define tcLODSkinning_h
+
+#include "tc/gim/atlas.h"
+#include "tc/gim/lod_selection.h"
+#include "tc/skinning/skinned_boxes.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tcvtk::lod
+{
+/// The Skin attribute's texels in PackTexels' order, 4 floats per texel each: the joints (exact
+/// integers as floats) and their weights; texels between charts hold joint 0, weight 0.
+struct SkinTexels
+{
+  std::vector<float> joints;
+  std::vector<float> weights;
+};
+SkinTexels PackSkin(const tc::Atlas& atlas, int skinAttribute);
+
+/// A skinned atlas as the mapper poses it: the rig, its skinned chart boxes, and the frame's
+/// skinning matrices of every instance.
+struct SkinnedAtlas
+{
+  bool valid = false;                ///< the atlas has a Skin attribute and a rig
+  int32_t joints = 0;                ///< joints of the rig's skeleton
+  std::vector<tc::SkinnedBox> boxes; ///< per chart, fitted when the atlas arrives
+  std::vector<float> palettes;       ///< instances x joints x tc::kPaletteFloats, the frame's
+  std::vector<float> posedBox;       ///< instances x #C x 12, the boxes posed by the palettes
+  std::vector<float> posedArea;      ///< instances x #C
+};
+
+/// Fits the skinned boxes of `atlas` (tc::fitSkinnedBoxes) when it is skinned; `skinned.valid`
+/// says whether it is.
+void PrepareSkinnedAtlas(const tc::Atlas& atlas, SkinnedAtlas& skinned);
+
+/// Every instance's skinning matrices (tc::poseMatrices) into skinned.palettes, and its chart
+/// boxes posed by them into posedBox and posedArea; in parallel over the instances. Instance i
+/// plays animation animations[i] (-1: the bind pose) at times[i] seconds.
+void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
+  const std::vector<double>& times, SkinnedAtlas& skinned);
+
+/// The animation of `atlas`'s rig that `choice` names (tc::findAnimation: "" the first, a name,
+/// an index as digits), -1 when it has none; `error` gets the message for a choice that names
+/// none of them (the bind pose is used then).
+int ChooseAnimation(const tc::Atlas& atlas, const std::string& choice, std::string& error);
+
+/// Axis-aligned bounds (xmin, xmax, ...) of every instance's posed chart boxes, each instance
+/// transformed by its row-major 4 x 4 matrix of `instances`: they hold the posed surface.
+std::array<double, 6> PosedBounds(
+  const SkinnedAtlas& skinned, const std::vector<double>& instances);
+} // namespace tcvtk::lod
+
+#endif
