@@ -9,6 +9,7 @@
 //   xvfb-run -a tc_bench_lod_rendering [mesh] [instances] [frames]
 //     default: bunny_glmark2 (70K; "" for the default), 400 instances (a 20 x 20 grid), 60 frames
 #include "bench_common.h"
+#include "crowd_path.h"
 #include "discrete_lod.h"
 
 #include "tcBaseComplex.h"
@@ -53,25 +54,13 @@ struct Run
   double triangles = 0.0; // per frame, mean
 };
 
-/// The camera path: a slow pass over the crowd, lower and closer as it goes, looking ahead.
-void PlaceCamera(vtkCamera* camera, int frame, int frames, double extent, double size)
-{
-  const double t = frames > 1 ? static_cast<double>(frame) / (frames - 1) : 0.0;
-  const double x = -0.2 * extent + 0.9 * extent * t;
-  camera->SetPosition(x, 1.5 * size + 3.0 * size * (1.0 - t), 2.0 * size);
-  camera->SetFocalPoint(x + 0.3 * extent, 0.0, -0.6 * extent);
-  camera->SetViewUp(0, 1, 0);
-  camera->SetViewAngle(50);
-  camera->SetClippingRange(0.05 * size, 4.0 * extent);
-}
-
 /// Renders the path; `beforeRender` (may be empty) runs once the camera is placed, before each
 /// render, and `trianglesOfFrame` after it.
 Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double extent, double size,
   const std::function<double()>& trianglesOfFrame, const std::function<void()>& beforeRender = {})
 {
   Run run;
-  PlaceCamera(renderer->GetActiveCamera(), 0, frames, extent, size);
+  tcbench::PlaceCamera(renderer->GetActiveCamera(), 0, frames, extent, size);
   if (beforeRender)
   {
     beforeRender();
@@ -81,7 +70,7 @@ Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double exten
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < frames; ++f)
   {
-    PlaceCamera(renderer->GetActiveCamera(), f, frames, extent, size);
+    tcbench::PlaceCamera(renderer->GetActiveCamera(), f, frames, extent, size);
     if (beforeRender)
     {
       beforeRender();
@@ -293,7 +282,7 @@ int main(int argc, char* argv[])
   const int selectionFrames = std::min(frames, 20);
   for (int f = 0; f < selectionFrames; ++f)
   {
-    PlaceCamera(renderer->GetActiveCamera(), f, selectionFrames, extent, size);
+    tcbench::PlaceCamera(renderer->GetActiveCamera(), f, selectionFrames, extent, size);
     window->Render();
     times.push_back(lod->GetSelectionSeconds());
     listTimes.push_back(lod->GetDrawListSeconds());
