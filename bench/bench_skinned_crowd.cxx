@@ -64,6 +64,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -313,30 +314,57 @@ vtkSmartPointer<vtkMultiBlockDataSet> Atlas(const std::string& mesh, const std::
   return atlas;
 }
 
-/// Renders the path; `beforeRender(frame)` runs once the camera is placed, before each render,
-/// and `trianglesOfFrame` after it. The first render (uploads, shader compilation, the skinned
-/// boxes) is not timed.
-Run Fly(vtkRenderWindow* window, vtkRenderer* renderer, int frames, double extent, double size,
-  const std::function<void(int)>& beforeRender, const std::function<double()>& trianglesOfFrame)
+/// One renderer along the path, in a window of its own: `pose(frame)` runs once the camera is
+/// placed, before each render, and `triangles()` after it.
+struct Flight
 {
-  auto* gl = static_cast<vtkOpenGLRenderWindow*>(window);
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  std::function<void(int)> pose;
+  std::function<double()> triangles;
   Run run;
-  tcbench::PlaceCamera(renderer->GetActiveCamera(), 0, frames, extent, size);
-  beforeRender(0);
-  window->Render();
-  gl->WaitForCompletion();
+
+  Flight()
+  {
+    this->window->SetOffScreenRendering(1);
+    this->window->SetSize(kWidth, kHeight);
+    this->window->AddRenderer(this->renderer);
+  }
+};
+
+/// Draws and times one frame of `flight`, or, with `timed` false, draws it only.
+void DrawFrame(Flight& flight, int frame, int frames, double extent, double size, bool timed)
+{
   const auto start = std::chrono::steady_clock::now();
+  tcbench::PlaceCamera(flight.renderer->GetActiveCamera(), frame, frames, extent, size);
+  flight.pose(frame);
+  flight.window->Render();
+  static_cast<vtkOpenGLRenderWindow*>(flight.window.Get())->WaitForCompletion();
+  if (timed)
+  {
+    flight.run.seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    flight.run.triangles += flight.triangles() / frames;
+  }
+}
+
+/// Flies the flights along the path together, frame by frame in turn, each render timed on its
+/// own: on a machine shared with other work, a load that comes and goes slows both renderers
+/// alike instead of the one that happens to fly then. The first render of each (uploads, shader
+/// compilation, tcLODMapper's skinned boxes) is not timed.
+void FlyTogether(const std::vector<Flight*>& flights, int frames, double extent, double size)
+{
+  for (Flight* flight : flights)
+  {
+    DrawFrame(*flight, 0, frames, extent, size, false);
+  }
   for (int f = 0; f < frames; ++f)
   {
-    tcbench::PlaceCamera(renderer->GetActiveCamera(), f, frames, extent, size);
-    beforeRender(f);
-    window->Render();
-    gl->WaitForCompletion();
-    run.triangles += trianglesOfFrame();
+    for (Flight* flight : flights)
+    {
+      DrawFrame(*flight, f, frames, extent, size, true);
+    }
   }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.triangles /= frames;
-  return run;
 }
 
 /// The window's colours after a render, read back.
@@ -469,19 +497,16 @@ struct LodStats
   bool skinned = false;
 };
 
-/// tcLODMapper along the path: one actor, every character an instance with its own place,
-/// animation and time.
-Run FlyLod(vtkRenderWindow* window, vtkRenderer* renderer, vtkMultiBlockDataSet* atlas,
-  const Character& c, const Crowd& crowd, int frames, LodStats& stats)
+/// tcLODMapper's flight: one actor, every character an instance with its own place, animation
+/// and time; `stats` sums its figures over the timed frames.
+void SetUpLod(Flight& flight, tcLODMapper* lod, vtkMultiBlockDataSet* atlas, const Character& c,
+  const Crowd& crowd, LodStats& stats)
 {
-  vtkNew<tcLODMapper> lod;
   lod->SetInputData(atlas);
   lod->SetErrorTarget(kErrorTarget);
   vtkNew<vtkDoubleArray> matrices;
   matrices->SetNumberOfComponents(16);
   vtkNew<vtkIntArray> animations;
-  vtkNew<vtkDoubleArray> times;
-  times->SetNumberOfTuples(static_cast<vtkIdType>(crowd.places.size()));
   for (size_t i = 0; i < crowd.places.size(); ++i)
   {
     matrices->InsertNextTuple(crowd.places[i].data());
@@ -491,8 +516,10 @@ Run FlyLod(vtkRenderWindow* window, vtkRenderer* renderer, vtkMultiBlockDataSet*
   lod->SetInstanceAnimations(animations);
   vtkNew<vtkActor> actor;
   actor->SetMapper(lod);
-  renderer->AddActor(actor);
-  const auto pose = [&](int frame)
+  flight.renderer->AddActor(actor);
+  auto times = vtkSmartPointer<vtkDoubleArray>::New();
+  times->SetNumberOfTuples(static_cast<vtkIdType>(crowd.places.size()));
+  flight.pose = [lod, times, &c, &crowd](int frame)
   {
     for (size_t i = 0; i < crowd.places.size(); ++i)
     {
@@ -500,42 +527,33 @@ Run FlyLod(vtkRenderWindow* window, vtkRenderer* renderer, vtkMultiBlockDataSet*
     }
     lod->SetInstanceTimes(times);
   };
-  const Run run = Fly(window, renderer, frames, crowd.extent, c.size, pose,
-    [&]()
-    {
-      stats.selection += lod->GetSelectionSeconds();
-      stats.drawList += lod->GetDrawListSeconds();
-      stats.charts += static_cast<double>(lod->GetChartsDrawn());
-      return static_cast<double>(lod->GetTrianglesDrawn());
-    });
-  stats.skinned = lod->GetSkinned();
-  stats.chartInstances = lod->GetNumberOfCharts() * static_cast<vtkIdType>(crowd.places.size());
-  renderer->RemoveAllViewProps();
-  return run;
+  flight.triangles = [lod, &stats]()
+  {
+    stats.selection += lod->GetSelectionSeconds();
+    stats.drawList += lod->GetDrawListSeconds();
+    stats.charts += static_cast<double>(lod->GetChartsDrawn());
+    return static_cast<double>(lod->GetTrianglesDrawn());
+  };
 }
 
-/// The peer along the path: the characters in view, each frame, in one instanced draw.
-Run FlyPeer(vtkRenderWindow* window, vtkRenderer* renderer, const Character& c, const Crowd& crowd,
-  int frames)
+/// The peer's flight: the characters in view, each frame, in one instanced draw.
+void SetUpPeer(Flight& flight, tcSkinnedCrowdMapper* peer, const Character& c, const Crowd& crowd)
 {
-  vtkNew<tcSkinnedCrowdMapper> peer;
   peer->SetInputData(c.mesh);
   peer->SetCrowdBounds(crowd.bounds);
   vtkNew<vtkActor> actor;
   actor->SetMapper(peer);
-  renderer->AddActor(actor);
-  std::vector<float> palettes;
-  int drawn = 0;
-  const auto pose = [&](int frame)
+  flight.renderer->AddActor(actor);
+  auto drawn = std::make_shared<int>(0);
+  vtkRenderer* renderer = flight.renderer;
+  flight.pose = [peer, drawn, renderer, &c, &crowd](int frame)
   {
-    drawn = PeerPalettes(c, crowd, renderer->GetActiveCamera(), frame, palettes);
+    std::vector<float> palettes;
+    *drawn = PeerPalettes(c, crowd, renderer->GetActiveCamera(), frame, palettes);
     peer->SetPalettes(palettes, static_cast<int>(c.rig.skeleton.joints.size()));
   };
   const double triangles = static_cast<double>(c.mesh->GetNumberOfPolys());
-  const Run run =
-    Fly(window, renderer, frames, crowd.extent, c.size, pose, [&]() { return drawn * triangles; });
-  renderer->RemoveAllViewProps();
-  return run;
+  flight.triangles = [drawn, triangles]() { return *drawn * triangles; };
 }
 
 /// The figures of one renderer.
@@ -584,14 +602,9 @@ int main(int argc, char* argv[])
     std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   const Crowd crowd = LayOut(c, characters);
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(kWidth, kHeight);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-
+  Flight withLod, plain;
   // Both must pose, or the ratio says nothing.
-  const PoseCheck check = CheckPoses(window, renderer, c, atlas);
+  const PoseCheck check = CheckPoses(withLod.window, withLod.renderer, c, atlas);
   std::printf("posing check, pixels of one character's silhouette (%lld covered): peer vs the CPU "
               "pose %lld, tcLODMapper vs the CPU pose %lld, peer at t1 vs t2 %lld: peer %s, "
               "tcLODMapper %s\n",
@@ -605,17 +618,22 @@ int main(int argc, char* argv[])
   }
 
   LodStats stats;
-  const Run withLod = FlyLod(window, renderer, atlas, c, crowd, frames, stats);
-  const Run plain = FlyPeer(window, renderer, c, crowd, frames);
+  vtkNew<tcLODMapper> lod;
+  SetUpLod(withLod, lod, atlas, c, crowd, stats);
+  vtkNew<tcSkinnedCrowdMapper> peer;
+  SetUpPeer(plain, peer, c, crowd);
+  FlyTogether({ &withLod, &plain }, frames, crowd.extent, c.size);
+  stats.skinned = lod->GetSkinned();
+  stats.chartInstances = lod->GetNumberOfCharts() * static_cast<vtkIdType>(crowd.places.size());
   std::printf("crowd: %d characters, each at its own phase, %d frames at %d x %d\n", characters,
     frames, kWidth, kHeight);
   Report(stats.skinned ? "tcLODMapper, skinned atlas, error <= 1 pixel"
                        : "tcLODMapper, NOT skinned, error <= 1 pixel",
-    withLod, frames);
-  Report("tcSkinnedCrowdMapper, skinned input mesh", plain, frames);
-  const double speedup = plain.seconds / withLod.seconds;
+    withLod.run, frames);
+  Report("tcSkinnedCrowdMapper, skinned input mesh", plain.run, frames);
+  const double speedup = plain.run.seconds / withLod.run.seconds;
   // A ratio counts only when tcLODMapper posed its characters and drew them.
-  const bool counted = stats.skinned && check.LodPoses() && withLod.triangles > 0.0;
+  const bool counted = stats.skinned && check.LodPoses() && withLod.run.triangles > 0.0;
   std::printf("  speed-up %.1fx (goal >= %.0fx: %s), at %.1fx fewer triangles per frame; per "
               "frame: LOD selection %.3f ms, draw list %.3f ms, %.0f of %lld chart instances "
               "drawn\n",
@@ -623,7 +641,7 @@ int main(int argc, char* argv[])
     !counted                    ? "not counted, tcLODMapper did not pose or draw its characters"
       : speedup >= kSpeedupGoal ? "met"
                                 : "missed",
-    plain.triangles / std::max(withLod.triangles, 1.0), 1e3 * stats.selection / frames,
+    plain.run.triangles / std::max(withLod.run.triangles, 1.0), 1e3 * stats.selection / frames,
     1e3 * stats.drawList / frames, stats.charts / frames,
     static_cast<long long>(stats.chartInstances));
   // A chart is one triangle at its coarsest level: the atlas cannot draw a character in fewer.
@@ -632,7 +650,7 @@ int main(int argc, char* argv[])
     static_cast<long long>(stats.chartInstances / characters),
     static_cast<long long>(stats.chartInstances / characters),
     static_cast<long long>(c.mesh->GetNumberOfPolys()));
-  const std::string name = RendererName(window);
+  const std::string name = RendererName(withLod.window);
   std::printf("  the paper's skinned crowd: %.0f M triangles/s (Table III, Boxing Crowd, GeForce "
               "8800 GTS)%s\n",
     1e-6 * kPaperThroughput,
