@@ -4,11 +4,14 @@
 // boxes in a unit cube, seen by a perspective camera from inside the cube's range so that some
 // are culled and some straddle the eye plane), in area and error mode, with and without
 // culling, on one thread and on all; then 400 instances of a 518-chart model (selection per
-// instance and tc::buildDrawList). Prints the median of 50 calls and the goal of the task next
-// to it.
+// instance and tc::buildDrawList); then 100K synthetic skinned boxes (4 random joints of 64 per
+// box, random weights per corner) posed by tc::poseLodBoxes and selected. Prints the median of 50
+// calls and the goal of the task next to it.
 //
 //   tc_bench_lod_selection
 #include "tc/gim/lod_selection.h"
+#include "tc/skinning/skin.h"
+#include "tc/skinning/skinned_boxes.h"
 
 #include "view_matrices.h"
 
@@ -31,7 +34,9 @@
 
 namespace
 {
-constexpr double kMaxMilliseconds = 1.0; // goal: <= 1 ms per call for 100K charts
+constexpr double kMaxMilliseconds = 1.0;        // goal: <= 1 ms per call for 100K charts
+constexpr double kMaxSkinnedMilliseconds = 2.0; // goal: <= 2 ms to pose and select 100K charts
+constexpr int32_t kJoints = 64;
 constexpr int32_t kCharts = 100000;
 constexpr int32_t kInstances = 400;
 constexpr int32_t kModelCharts = 518;
@@ -76,6 +81,38 @@ Matrix camera(const std::array<double, 3>& eye, const std::array<double, 3>& tar
     tctest::perspective(fovyDegrees, aspect, zNear, zFar), tctest::lookAt(eye, target));
 }
 
+/// A uniformly random orthonormal frame (rows): Gram-Schmidt on two Gaussian vectors of `normal`.
+std::array<std::array<double, 3>, 3> randomFrame(
+  std::mt19937& rng, std::normal_distribution<double>& normal)
+{
+  std::array<std::array<double, 3>, 3> e{};
+  const auto normalize = [](std::array<double, 3>& v)
+  {
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (double& x : v)
+    {
+      x /= l;
+    }
+  };
+  for (int k = 0; k < 2; ++k)
+  {
+    for (double& v : e[k])
+    {
+      v = normal(rng);
+    }
+  }
+  normalize(e[0]);
+  const double d = e[0][0] * e[1][0] + e[0][1] * e[1][1] + e[0][2] * e[1][2];
+  for (int i = 0; i < 3; ++i)
+  {
+    e[1][i] -= d * e[0][i];
+  }
+  normalize(e[1]);
+  e[2] = { e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+    e[0][0] * e[1][1] - e[0][1] * e[1][0] };
+  return e;
+}
+
 /// `count` charts with random boxes in the unit cube: c0 uniform, three orthogonal axes of
 /// lengths `minSize` .. `maxSize` in a random orientation, maxLevel 3 .. 7, measured errors
 /// halving per level, neighbours c + 1, c + 2, c + 3 (mod count).
@@ -95,32 +132,7 @@ tc::LodCharts syntheticCharts(int32_t count, double minSize, double maxSize, uin
   charts.neighbor.resize(3 * static_cast<size_t>(count));
   for (int32_t c = 0; c < count; ++c)
   {
-    // Gram-Schmidt on two Gaussian vectors: a uniformly random orthonormal frame.
-    std::array<std::array<double, 3>, 3> e{};
-    for (int k = 0; k < 2; ++k)
-    {
-      for (double& v : e[k])
-      {
-        v = normal(rng);
-      }
-    }
-    const auto normalize = [](std::array<double, 3>& v)
-    {
-      const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      for (double& x : v)
-      {
-        x /= l;
-      }
-    };
-    normalize(e[0]);
-    const double d = e[0][0] * e[1][0] + e[0][1] * e[1][1] + e[0][2] * e[1][2];
-    for (int i = 0; i < 3; ++i)
-    {
-      e[1][i] -= d * e[0][i];
-    }
-    normalize(e[1]);
-    e[2] = { e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
-      e[0][0] * e[1][1] - e[0][1] * e[1][0] };
+    const std::array<std::array<double, 3>, 3> e = randomFrame(rng, normal);
     std::array<double, 3> length{};
     float* b = charts.box.data() + 12 * static_cast<size_t>(c);
     for (int i = 0; i < 3; ++i)
@@ -153,6 +165,92 @@ tc::LodCharts syntheticCharts(int32_t count, double minSize, double maxSize, uin
   return charts;
 }
 
+/// `count` skinned boxes shaped as syntheticCharts' (c0 in the unit cube, orthogonal axes of
+/// 0.002 .. 0.02), each moved by 4 distinct random joints of kJoints with random weights per
+/// corner (the worst case of the layout: every joint slot used).
+std::vector<tc::SkinnedBox> syntheticSkinnedBoxes(int32_t count, uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<tc::SkinnedBox> boxes(static_cast<size_t>(count));
+  for (tc::SkinnedBox& box : boxes)
+  {
+    const auto e = randomFrame(rng, normal);
+    for (size_t i = 0; i < 3; ++i)
+    {
+      box.corners[i] = unit(rng);
+    }
+    for (size_t k = 0; k < 3; ++k)
+    {
+      const double length = 0.002 + 0.018 * unit(rng);
+      for (size_t i = 0; i < 3; ++i)
+      {
+        box.corners[3 * (k + 1) + i] = box.corners[i] + length * e[k][i];
+      }
+    }
+    std::array<int32_t, 4> joints{};
+    for (size_t m = 0; m < 4; ++m)
+    {
+      do
+      {
+        joints[m] = static_cast<int32_t>(rng() % kJoints);
+      } while (std::find(joints.begin(), joints.begin() + static_cast<std::ptrdiff_t>(m),
+                 joints[m]) != joints.begin() + static_cast<std::ptrdiff_t>(m));
+    }
+    for (tc::PointSkin& skin : box.skin)
+    {
+      double sum = 0.0;
+      std::array<double, 4> w{};
+      for (double& x : w)
+      {
+        x = 0.05 + unit(rng);
+        sum += x;
+      }
+      for (size_t m = 0; m < 4; ++m)
+      {
+        skin.joints[m] = joints[m];
+        skin.weights[m] = static_cast<float>(w[m] / sum);
+      }
+    }
+  }
+  return boxes;
+}
+
+/// Skinning matrices of kJoints joints: each a rotation by up to 20 degrees about a random axis
+/// through a random point of the unit cube, so that the posed boxes stay about the cube.
+std::vector<tc::Matrix4> syntheticPose(uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<tc::Matrix4> matrices;
+  for (int32_t j = 0; j < kJoints; ++j)
+  {
+    const auto e = randomFrame(rng, normal);
+    const double angle = 20.0 * unit(rng) * 3.14159265358979323846 / 180.0;
+    const double c = std::cos(angle), s = std::sin(angle);
+    // Rotation about e[0]: R = e0 e0^T + c (I - e0 e0^T) + s [e0]x.
+    const std::array<double, 3>& a = e[0];
+    const double cross[3][3] = { { 0, -a[2], a[1] }, { a[2], 0, -a[0] }, { -a[1], a[0], 0 } };
+    tc::Matrix4 m = tc::identityMatrix();
+    const std::array<double, 3> pivot{ unit(rng), unit(rng), unit(rng) };
+    for (size_t r = 0; r < 3; ++r)
+    {
+      double shift = pivot[r];
+      for (size_t k = 0; k < 3; ++k)
+      {
+        const double value = a[r] * a[k] * (1.0 - c) + (r == k ? c : 0.0) + s * cross[r][k];
+        m[4 * r + k] = value;
+        shift -= value * pivot[k];
+      }
+      m[4 * r + 3] = shift;
+    }
+    matrices.push_back(m);
+  }
+  return matrices;
+}
+
 /// Drawn charts per level, e.g. "0:12 1:40 ...", and the culled ones.
 std::string histogram(const std::vector<int32_t>& levels, int32_t stride)
 {
@@ -168,6 +266,45 @@ std::string histogram(const std::vector<int32_t>& levels, int32_t stride)
     s << ", " << d << ": " << count[static_cast<size_t>(d) + 1];
   }
   return s.str();
+}
+
+/// Posing 100K skinned boxes by one instance's palette (tc::poseLodBoxes) and selecting their
+/// levels (default options: error mode, culling) on the posed boxes, as the renderer does per
+/// skinned instance and frame.
+void benchSkinnedBoxes(
+  const tc::LodCharts& charts, const tc::LodView& view, tbb::task_arena& single, int threads)
+{
+  const tc::LodSkinnedBoxes boxes =
+    tc::LodSkinnedBoxes::fromBoxes(syntheticSkinnedBoxes(kCharts, 3));
+  std::vector<float> palette;
+  tc::appendPaletteRows(syntheticPose(4), palette);
+  tc::LodCharts posed = charts;
+  std::vector<int32_t> levels(static_cast<size_t>(kCharts));
+  const tc::LodOptions options;
+  const auto pose = [&]
+  { tc::poseLodBoxes(boxes, palette.data(), kJoints, posed.box.data(), posed.worldArea.data()); };
+  const auto poseSelect = [&]
+  {
+    pose();
+    tc::selectLevels(posed, view, options, levels.data());
+  };
+  poseSelect();
+  std::cout << "\n== skinned boxes: pose (tc::poseLodBoxes) + select, " << kCharts
+            << " synthetic charts, 4 of " << kJoints << " joints per box\n";
+  std::cout << "levels (error 1 px, culling): " << histogram(levels, posed.stride) << "\n";
+  std::cout << "ms per frame (median of " << kCalls << ")  1 thread   " << threads << " threads\n";
+  const double poseOne = medianMilliseconds([&] { single.execute(pose); });
+  const double poseAll = medianMilliseconds(pose);
+  const double one = medianMilliseconds([&] { single.execute(poseSelect); });
+  const double all = medianMilliseconds(poseSelect);
+  std::cout << "  " << std::left << std::setw(26) << "pose" << std::right << std::setw(8)
+            << fixed(poseOne, 3) << std::setw(11) << fixed(poseAll, 3) << "\n";
+  std::cout << "  " << std::left << std::setw(26) << "pose + select" << std::right << std::setw(8)
+            << fixed(one, 3) << std::setw(11) << fixed(all, 3) << "\n";
+  std::cout << "goal <= 2 ms to pose and select 100K charts: "
+            << mark(all <= kMaxSkinnedMilliseconds) << " (" << fixed(all, 3) << " ms on " << threads
+            << " threads, " << fixed(one, 3)
+            << " ms on 1 thread: " << mark(one <= kMaxSkinnedMilliseconds) << ")\n";
 }
 } // namespace
 
@@ -268,5 +405,6 @@ int main()
     std::cout << " " << d << ": " << list.chartsPerLevel[d];
   }
   std::cout << "\n";
+  benchSkinnedBoxes(charts, view, single, threads);
   return 0;
 }

@@ -5,8 +5,6 @@
 #include "tc/common/parallel.h"
 #include "tc/skinning/skin.h"
 
-#include <vtkMath.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -36,57 +34,16 @@ void PrepareSkinnedAtlas(const tc::Atlas& atlas, SkinnedAtlas& skinned)
   {
     return;
   }
-  skinned.boxes = tc::fitSkinnedBoxes(atlas).boxes;
+  skinned.boxes = tc::LodSkinnedBoxes::fromBoxes(tc::fitSkinnedBoxes(atlas).boxes);
   skinned.joints = static_cast<int32_t>(atlas.rig.skeleton.joints.size());
   skinned.valid = true;
 }
-
-namespace
-{
-/// The posed box of `box` (tc::posedBoxFrame's: it holds the chart's posed samples) in LodCharts'
-/// layout: the corner at the frame's lower coordinates and the three axes spanning its ranges.
-void PosedLodBox(
-  const tc::SkinnedBox& box, const std::vector<tc::Matrix4>& matrices, float* out, float& worldArea)
-{
-  const tc::BoxFrame frame = tc::posedBoxFrame(tc::poseBox(box, matrices));
-  // The axes are the columns of the inverse of inverseAxes.
-  double inverse[3][3], axes[3][3];
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      inverse[r][c] = frame.inverseAxes[static_cast<size_t>(3 * r + c)];
-    }
-  }
-  vtkMath::Invert3x3(inverse, axes);
-  double a[3][3];
-  for (int x = 0; x < 3; ++x)
-  {
-    double c0 = frame.pivot[static_cast<size_t>(x)];
-    for (int k = 0; k < 3; ++k)
-    {
-      c0 += axes[x][k] * frame.lo[static_cast<size_t>(k)];
-      a[k][x] = axes[x][k] * (frame.hi[static_cast<size_t>(k)] - frame.lo[static_cast<size_t>(k)]);
-      out[3 + 3 * k + x] = static_cast<float>(a[k][x]);
-    }
-    out[x] = static_cast<float>(c0);
-  }
-  double area = 0.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    double cross[3];
-    vtkMath::Cross(a[k], a[(k + 1) % 3], cross);
-    area += vtkMath::Norm(cross);
-  }
-  worldArea = static_cast<float>(area);
-}
-} // namespace
 
 void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
   const std::vector<double>& times, SkinnedAtlas& skinned)
 {
   const size_t instances = times.size();
-  const size_t nc = skinned.boxes.size();
+  const size_t nc = static_cast<size_t>(skinned.boxes.size());
   const size_t perPalette = static_cast<size_t>(skinned.joints) * tc::kPaletteFloats;
   skinned.palettes.resize(instances * perPalette);
   skinned.posedBox.resize(instances * nc * 12);
@@ -96,16 +53,11 @@ void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
     [&](int64_t i)
     {
       const size_t k = static_cast<size_t>(i);
-      const std::vector<tc::Matrix4> matrices =
-        tc::poseMatrices(atlas.rig, animations[k], times[k]);
       std::vector<float> palette;
-      tc::appendPaletteRows(matrices, palette);
+      tc::appendPaletteRows(tc::poseMatrices(atlas.rig, animations[k], times[k]), palette);
       std::copy(palette.begin(), palette.end(), skinned.palettes.begin() + k * perPalette);
-      for (size_t c = 0; c < nc; ++c)
-      {
-        PosedLodBox(skinned.boxes[c], matrices, skinned.posedBox.data() + 12 * (k * nc + c),
-          skinned.posedArea[k * nc + c]);
-      }
+      tc::poseLodBoxes(skinned.boxes, palette.data(), skinned.joints,
+        skinned.posedBox.data() + k * nc * 12, skinned.posedArea.data() + k * nc);
     },
     tc::Progress(), 1);
 }
@@ -126,7 +78,7 @@ int ChooseAnimation(const tc::Atlas& atlas, const std::string& choice, std::stri
 std::array<double, 6> PosedBounds(const SkinnedAtlas& skinned, const std::vector<double>& instances)
 {
   std::array<double, 6> bounds{ INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY };
-  const size_t nc = skinned.boxes.size();
+  const size_t nc = static_cast<size_t>(skinned.boxes.size());
   for (size_t i = 0; i < instances.size() / 16 && (i + 1) * nc * 12 <= skinned.posedBox.size(); ++i)
   {
     const double* m = instances.data() + 16 * i;

@@ -33,12 +33,12 @@ SkinTexels PackSkin(const tc::Atlas& atlas, int skinAttribute);
 /// skinning matrices of every instance.
 struct SkinnedAtlas
 {
-  bool valid = false;                ///< the atlas has a Skin attribute and a rig
-  int32_t joints = 0;                ///< joints of the rig's skeleton
-  std::vector<tc::SkinnedBox> boxes; ///< per chart, fitted when the atlas arrives
-  std::vector<float> palettes;       ///< instances x joints x tc::kPaletteFloats, the frame's
-  std::vector<float> posedBox;       ///< instances x #C x 12, the boxes posed by the palettes
-  std::vector<float> posedArea;      ///< instances x #C
+  bool valid = false;           ///< the atlas has a Skin attribute and a rig
+  int32_t joints = 0;           ///< joints of the rig's skeleton
+  tc::LodSkinnedBoxes boxes;    ///< per chart, fitted when the atlas arrives
+  std::vector<float> palettes;  ///< instances x joints x tc::kPaletteFloats, the frame's
+  std::vector<float> posedBox;  ///< instances x #C x 12, the boxes posed by the palettes
+  std::vector<float> posedArea; ///< instances x #C
 };
 
 /// Fits the skinned boxes of `atlas` (tc::fitSkinnedBoxes) when it is skinned; `skinned.valid`

@@ -4,19 +4,23 @@
 #include "skinning/weight_fit.h"
 
 #include "tc/common/errors.h"
+#include "tc/common/parallel.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <string>
 
 namespace tc
 {
 namespace
 {
 using Vec3 = std::array<double, 3>;
+using Corners = std::array<Vec3, 4>;
 
 // A chart's finest-level samples: bind positions and skins.
 struct ChartSamples
@@ -25,7 +29,7 @@ struct ChartSamples
   std::vector<PointSkin> skins;
 };
 
-// An orthonormal box: centre, axes (rows) and half extents.
+// An orthonormal box: centre, axes (rows, the thinnest first) and half extents.
 struct Obb
 {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
@@ -33,9 +37,46 @@ struct Obb
   Eigen::Vector3d half = Eigen::Vector3d::Zero();
 };
 
+// An affine motion y = linear x + shift.
+struct Motion
+{
+  Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+};
+
+// The frames a box is fitted and checked at: their skinning matrices and the chart's samples
+// posed by each.
+struct Frames
+{
+  std::vector<std::vector<Matrix4>> matrices;
+  /// Per frame, its animation when the frames of that animation follow each other in time order
+  /// (the check frames), else -1.
+  std::vector<int32_t> sequence;
+  std::vector<std::vector<Vec3>> posed;
+};
+
 Eigen::Vector3d toEigen(const Vec3& p)
 {
   return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+Vec3 fromEigen(const Eigen::Vector3d& p)
+{
+  return { p(0), p(1), p(2) };
+}
+
+// The corners that carry a skin (SkinnedBox::skin): c0, c2, c3.
+constexpr std::array<size_t, 3> kSkinnedCorners{ 0, 2, 3 };
+
+Eigen::Vector3d bindCorner(const SkinnedBox& box, size_t i)
+{
+  return Eigen::Vector3d(box.corners[3 * i], box.corners[3 * i + 1], box.corners[3 * i + 2]);
+}
+
+// The length of the bind thin edge a1, the posed thin axis's (header).
+double bindThickness(const SkinnedBox& box)
+{
+  return (bindCorner(box, 1) - bindCorner(box, 0)).norm();
 }
 
 ChartSamples chartSamples(const Atlas& atlas, int32_t chart, int32_t skinAttribute)
@@ -91,8 +132,8 @@ std::vector<Vec3> poseSamples(const ChartSamples& s, const std::vector<Matrix4>&
   return posed;
 }
 
-// The PCA box of `points`: axes the eigenvectors of their covariance, every half extent at
-// least minHalf.
+// The PCA box of `points`: axes the eigenvectors of their covariance (ascending eigenvalues, so
+// the thinnest first), every half extent at least minHalf.
 Obb pcaBox(const std::vector<Vec3>& points, double minHalf)
 {
   Obb box;
@@ -108,6 +149,11 @@ Obb pcaBox(const std::vector<Vec3>& points, double minHalf)
     cov += x * x.transpose();
   }
   box.axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().transpose();
+  // Right-handed, so that the thin axis is the other two's cross product (frameCorners).
+  if (box.axes.determinant() < 0.0)
+  {
+    box.axes.row(0) *= -1.0;
+  }
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   for (const Vec3& p : points)
   {
@@ -125,49 +171,29 @@ double obbVolume(const Obb& box)
   return 8.0 * box.half.prod();
 }
 
-// Padding of a bind box per side, in bind lengths: (below, above) along axis 0, 1, 2.
-using SidePads = std::array<double, 6>;
-
-// AtlasChart::box layout of `box` grown by `pads`.
-std::array<double, 12> boxCorners(const Obb& box, const SidePads& pads)
+// The corners c0 .. c3 of `box`: c0 the low corner, c_k the next one along axis k - 1.
+Corners boxCorners(const Obb& box)
 {
-  Eigen::Vector3d half, center = box.center;
+  const Eigen::Vector3d c0 = box.center - box.axes.transpose() * box.half;
+  Corners corners{};
+  corners[0] = fromEigen(c0);
   for (int axis = 0; axis < 3; ++axis)
   {
-    const double below = pads[static_cast<size_t>(2 * axis)];
-    const double above = pads[static_cast<size_t>(2 * axis + 1)];
-    half(axis) = box.half(axis) + 0.5 * (below + above);
-    center += 0.5 * (above - below) * box.axes.row(axis).transpose();
-  }
-  const Eigen::Vector3d c0 = center - box.axes.transpose() * half;
-  std::array<double, 12> corners{};
-  for (int r = 0; r < 3; ++r)
-  {
-    corners[static_cast<size_t>(r)] = c0(r);
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      corners[static_cast<size_t>(3 * (axis + 1) + r)] =
-        c0(r) + 2.0 * half(axis) * box.axes(axis, r);
-    }
+    corners[static_cast<size_t>(axis + 1)] =
+      fromEigen(c0 + 2.0 * box.half(axis) * box.axes.row(axis).transpose());
   }
   return corners;
 }
 
-// Corner m (bit order) of AtlasChart::box-style corners.
-Vec3 boxCorner(const std::array<double, 12>& corners, int m)
+void setCorners(SkinnedBox& box, const Corners& corners)
 {
-  Vec3 p{ corners[0], corners[1], corners[2] };
-  for (int axis = 0; axis < 3; ++axis)
+  for (size_t i = 0; i < 4; ++i)
   {
-    if (m >> axis & 1)
+    for (size_t r = 0; r < 3; ++r)
     {
-      for (int r = 0; r < 3; ++r)
-      {
-        p[r] += corners[static_cast<size_t>(3 * (axis + 1) + r)] - corners[static_cast<size_t>(r)];
-      }
+      box.corners[3 * i + r] = corners[i][r];
     }
   }
-  return p;
 }
 
 // The chart's dominant joints: the (at most 4) largest total weights over its samples,
@@ -214,10 +240,10 @@ Eigen::Matrix3d linearPart(const Matrix4& t)
   return l;
 }
 
-// The affine motion (L, t: y = L x + t) that carries the bind samples to their posed positions
-// best in least squares, with a faint pull of L towards `prior` (the dominant joint's linear
-// part), which only decides the directions the samples do not span (a flat chart's normal).
-std::pair<Eigen::Matrix3d, Eigen::Vector3d> chartMotion(
+// The affine motion that carries the bind samples to their posed positions best in least
+// squares, with a faint pull of its linear part towards `prior` (the dominant joint's), which
+// only decides the directions the samples do not span (a flat chart's normal).
+Motion chartMotion(
   const std::vector<Vec3>& bind, const std::vector<Vec3>& posed, const Eigen::Matrix3d& prior)
 {
   Eigen::Vector3d mx = Eigen::Vector3d::Zero(), my = Eigen::Vector3d::Zero();
@@ -236,37 +262,35 @@ std::pair<Eigen::Matrix3d, Eigen::Vector3d> chartMotion(
     yx += (toEigen(posed[v]) - my) * x.transpose();
   }
   const double lambda = 1e-6 * xx.trace() + 1e-300;
-  const Eigen::Matrix3d l = (xx + lambda * Eigen::Matrix3d::Identity())
-                              .ldlt()
-                              .solve((yx + lambda * prior).transpose())
-                              .transpose();
-  return { l, my - l * mx };
+  Motion motion;
+  motion.linear = (xx + lambda * Eigen::Matrix3d::Identity())
+                    .ldlt()
+                    .solve((yx + lambda * prior).transpose())
+                    .transpose();
+  motion.shift = my - motion.linear * mx;
+  return motion;
 }
 
-// Step 2: the weights of `joints` (>= 0, sum 1) whose blend carries `corner` closest to the
+// The weights of `joints` (>= 0, sum 1) whose blend carries the bind `corner` closest to its
 // targets over all frames (simplexLeastSquares of the 3 #K residuals).
-PointSkin fitCornerSkin(const std::vector<Vec3>& corners, const std::vector<int32_t>& joints,
-  const std::vector<std::vector<Matrix4>>& frames,
-  const std::vector<std::vector<Eigen::Vector3d>>& targets)
+PointSkin fitCornerSkin(const Vec3& corner, const std::vector<int32_t>& joints,
+  const std::vector<std::vector<Matrix4>>& frames, const std::vector<Vec3>& targets)
 {
   const int m = static_cast<int>(joints.size());
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(m, m);
   Eigen::VectorXd h = Eigen::VectorXd::Zero(m);
   for (size_t k = 0; k < frames.size(); ++k)
   {
-    for (size_t c = 0; c < corners.size(); ++c)
+    Eigen::MatrixXd p(3, m);
+    for (int b = 0; b < m; ++b)
     {
-      Eigen::MatrixXd p(3, m);
-      for (int b = 0; b < m; ++b)
-      {
-        PointSkin one;
-        one.joints[0] = joints[static_cast<size_t>(b)];
-        one.weights[0] = 1.0f;
-        p.col(b) = toEigen(skinPoint(corners[c], one, frames[k]));
-      }
-      g += p.transpose() * p;
-      h += p.transpose() * targets[k][c];
+      PointSkin one;
+      one.joints[0] = joints[static_cast<size_t>(b)];
+      one.weights[0] = 1.0f;
+      p.col(b) = toEigen(skinPoint(corner, one, frames[k]));
     }
+    g += p.transpose() * p;
+    h += p.transpose() * toEigen(targets[k]);
   }
   g += (1e-9 * g.trace() + 1e-300) * Eigen::MatrixXd::Identity(m, m);
   const Eigen::VectorXd w = detail::proxy::simplexLeastSquares(g, h, 0);
@@ -303,174 +327,227 @@ std::vector<double> frameTimes(const Animation& animation, int count, bool withK
   return times;
 }
 
-// Skinning matrices of every frame of every animation (the rest pose when there is none).
-std::vector<std::vector<Matrix4>> frameMatrices(const Rig& rig, int count, bool withKeys)
+// Skinning matrices of every frame of every animation (the rest pose when there is none), in
+// time order within an animation, and each frame's animation (-1 for the rest pose).
+struct FrameSet
 {
-  std::vector<std::vector<Matrix4>> frames;
+  std::vector<std::vector<Matrix4>> matrices;
+  std::vector<int32_t> animation;
+};
+
+FrameSet frameMatrices(const Rig& rig, int count, bool withKeys)
+{
+  FrameSet frames;
   if (rig.animations.empty())
   {
-    frames.push_back(skinningMatrices(rig.skeleton, jointGlobals(rig.skeleton, nullptr, 0.0)));
+    frames.matrices.push_back(poseMatrices(rig, -1, 0.0));
+    frames.animation.push_back(-1);
   }
-  for (const Animation& animation : rig.animations)
+  for (size_t a = 0; a < rig.animations.size(); ++a)
   {
-    for (double t : frameTimes(animation, count, withKeys))
+    for (double t : frameTimes(rig.animations[a], count, withKeys))
     {
-      frames.push_back(skinningMatrices(rig.skeleton, jointGlobals(rig.skeleton, &animation, t)));
+      frames.matrices.push_back(poseMatrices(rig, static_cast<int>(a), t));
+      frames.animation.push_back(static_cast<int32_t>(a));
     }
   }
   return frames;
 }
 
-// Whether every posed sample of every frame lies in the posed box (boxContains, no tolerance).
-bool holdsAll(const SkinnedBox& box, const std::vector<std::vector<Matrix4>>& frames,
-  const std::vector<std::vector<Vec3>>& posed)
+// The posed frame of `box` at `matrices` (header): the pivot q_0 and q_0 + A_k for its axes.
+Corners frameCorners(const SkinnedBox& box, const std::vector<Matrix4>& matrices)
 {
-  for (size_t k = 0; k < frames.size(); ++k)
+  std::array<Eigen::Vector3d, 3> q;
+  for (size_t j = 0; j < 3; ++j)
   {
-    const BoxFrame frame = posedBoxFrame(poseBox(box, frames[k]));
-    for (const Vec3& p : posed[k])
-    {
-      if (!boxContains(frame, p))
-      {
-        return false;
-      }
-    }
+    const size_t i = kSkinnedCorners[j];
+    const Vec3 corner{ box.corners[3 * i], box.corners[3 * i + 1], box.corners[3 * i + 2] };
+    q[j] = toEigen(skinPoint(corner, box.skin[j], matrices));
   }
-  return true;
+  const Eigen::Vector3d a2 = q[1] - q[0], a3 = q[2] - q[0];
+  const Eigen::Vector3d normal = a2.cross(a3);
+  const Eigen::Vector3d e1 = normal.normalized(), e3 = a3.normalized();
+  Corners out{};
+  out[0] = fromEigen(q[0]);
+  out[1] = fromEigen(q[0] + bindThickness(box) * e1);
+  out[2] = fromEigen(q[0] + a2.norm() * e3.cross(e1));
+  out[3] = fromEigen(q[2]);
+  return out;
 }
 
-// Step 3: the smallest padding (to 1/4096 of the diagonal, by doubling then bisection) of every
-// side of the bind box for which the posed box holds every posed sample of every frame. One
-// padding for all sides: growing sides on their own (by how far samples stick out of each) does
-// not converge, since every grown corner moves the posed axes too.
-double requiredPadding(SkinnedBox& box, const Obb& bind, double diagonal,
-  const std::vector<std::vector<Matrix4>>& frames, const std::vector<std::vector<Vec3>>& posed)
+// Step 3: the range of the posed samples' coordinates in the posed frame over every frame, each
+// side then moved out by `padding` times how far it reaches beyond [0, 1], and by the largest
+// change of that side between consecutive frames of a sequence: between two frames the chart
+// moves less than that where the motion is smooth. Exact at the frames, whatever the corners'
+// skins do.
+void fitRange(SkinnedBox& box, const Frames& frames, double padding)
 {
-  const auto holds = [&](double pad)
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  Eigen::Vector3d stepLo = Eigen::Vector3d::Zero(), stepHi = stepLo, lastLo = stepLo,
+                  lastHi = stepLo;
+  for (size_t k = 0; k < frames.matrices.size(); ++k)
   {
-    box.corners = boxCorners(bind, SidePads{ pad, pad, pad, pad, pad, pad });
-    return holdsAll(box, frames, posed);
-  };
-  if (holds(0.0))
-  {
-    return 0.0;
-  }
-  double lo = 0.0, hi = diagonal / 256.0;
-  while (!holds(hi))
-  {
-    lo = hi;
-    hi *= 2.0;
-    if (hi > 64.0 * diagonal)
+    const BoxFrame frame = posedBoxFrame(frameCorners(box, frames.matrices[k]));
+    if (!(frame.volume > 0.0))
     {
-      throw InputError("fitSkinnedBoxes: a chart's skinned box cannot hold its samples (its "
-                       "corners' skins do not follow the chart; check the Skin attribute)");
+      throw InputError("fitSkinnedBoxes: a chart's box collapses in a pose (its corners' skins "
+                       "do not follow the chart; check the Skin attribute)");
     }
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse(
+      frame.inverseAxes.data());
+    Eigen::Vector3d frameLo = Eigen::Vector3d::Constant(INFINITY), frameHi = -frameLo;
+    for (const Vec3& p : frames.posed[k])
+    {
+      const Eigen::Vector3d u = inverse * (toEigen(p) - toEigen(frame.pivot));
+      frameLo = frameLo.cwiseMin(u);
+      frameHi = frameHi.cwiseMax(u);
+    }
+    if (k > 0 && frames.sequence[k] >= 0 && frames.sequence[k] == frames.sequence[k - 1])
+    {
+      stepLo = stepLo.cwiseMax((frameLo - lastLo).cwiseAbs());
+      stepHi = stepHi.cwiseMax((frameHi - lastHi).cwiseAbs());
+    }
+    lastLo = frameLo;
+    lastHi = frameHi;
+    lo = lo.cwiseMin(frameLo);
+    hi = hi.cwiseMax(frameHi);
   }
-  while (hi - lo > diagonal / 4096.0)
+  for (size_t k = 0; k < 3; ++k)
   {
-    const double mid = 0.5 * (lo + hi);
-    (holds(mid) ? hi : lo) = mid;
+    const Eigen::Index e = static_cast<Eigen::Index>(k);
+    box.lo[k] = lo(e) - padding * std::max(0.0, -lo(e)) - stepLo(e);
+    box.hi[k] = hi(e) + padding * std::max(0.0, hi(e) - 1.0) + stepHi(e);
   }
-  return hi;
 }
 
-// One chart: (1) bind box by PCA of the bind samples, (2) per corner the weights of the chart's
-// dominant joints that follow the chart's best affine motion, (3) growth until it holds every
-// sample of the fitted and checked frames, plus the margin on every side; then its volume
-// ratios at the fitted frames.
-SkinnedBox fitChart(const ChartSamples& s, const std::vector<std::vector<Matrix4>>& fit,
-  const std::vector<std::vector<Matrix4>>& check, const SkinnedBoxOptions& options,
-  std::vector<double>& ratios)
+// Volume figures of the fitted frames: per chart and frame the posed box's volume and the
+// tight box's.
+struct VolumeFigures
+{
+  std::vector<double> posed;
+  std::vector<double> tight;
+};
+
+// Step 2: the skins of the corners c0, c2, c3 that carry the frame (frameCorners), each fitted
+// to where the chart's best affine motion of every fitted frame carries that corner.
+void fitCornerSkins(SkinnedBox& box, const ChartSamples& s, const Obb& bind,
+  const std::vector<int32_t>& joints, const Frames& fit)
+{
+  const Corners corners = boxCorners(bind);
+  std::array<std::vector<Vec3>, 3> targets;
+  for (size_t k = 0; k < fit.matrices.size(); ++k)
+  {
+    const Motion motion =
+      chartMotion(s.points, fit.posed[k], linearPart(fit.matrices[k][joints[0]]));
+    for (size_t j = 0; j < 3; ++j)
+    {
+      const Vec3& corner = corners[kSkinnedCorners[j]];
+      targets[j].push_back(fromEigen(motion.linear * toEigen(corner) + motion.shift));
+    }
+  }
+  for (size_t j = 0; j < 3; ++j)
+  {
+    box.skin[j] = fitCornerSkin(corners[kSkinnedCorners[j]], joints, fit.matrices, targets[j]);
+  }
+}
+
+// One chart: (1) bind box by PCA of the bind samples, (2) the weights of the chart's dominant
+// joints at c0, c2, c3 that follow the chart's motion, (3) the range that holds every sample of
+// the fitted and checked frames in the posed frame, plus the margin; then its volumes at the
+// fitted frames.
+SkinnedBox fitChart(const ChartSamples& s, const FrameSet& fit, const FrameSet& check,
+  const SkinnedBoxOptions& options, VolumeFigures& figures)
 {
   Obb bind = pcaBox(s.points, 0.0);
   const double diagonal = std::max(2.0 * bind.half.norm(), 1e-300);
   bind.half = bind.half.cwiseMax(0.5 * options.minExtent * diagonal);
-  const std::vector<int32_t> joints = dominantJoints(s);
-  std::vector<std::vector<Vec3>> posed;
-  for (const std::vector<Matrix4>& matrices : fit)
+  Frames frames;
+  for (const std::vector<Matrix4>& matrices : fit.matrices)
   {
-    posed.push_back(poseSamples(s, matrices));
+    frames.matrices.push_back(matrices);
+    frames.sequence.push_back(-1);
+    frames.posed.push_back(poseSamples(s, matrices));
   }
   SkinnedBox box;
-  box.corners = boxCorners(bind, SidePads{});
-  std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> motions;
-  for (size_t k = 0; k < fit.size(); ++k)
+  fitCornerSkins(box, s, bind, dominantJoints(s), frames);
+  for (size_t k = 0; k < check.matrices.size(); ++k)
   {
-    motions.push_back(chartMotion(s.points, posed[k], linearPart(fit[k][joints[0]])));
+    frames.matrices.push_back(check.matrices[k]);
+    frames.sequence.push_back(check.animation[k]);
+    frames.posed.push_back(poseSamples(s, check.matrices[k]));
   }
-  for (int m = 0; m < 8; m += 2)
+  setCorners(box, boxCorners(bind));
+  fitRange(box, frames, options.padding);
+  for (size_t k = 0; k < fit.matrices.size(); ++k)
   {
-    // Corners m and m + 1 lie across the thinnest axis (PCA's first): one skin for both, so
-    // that the posed thin edge is the blend of rotations of the bind one, never a difference of
-    // two blends much longer than the chart is thick.
-    const std::vector<Vec3> pair = { boxCorner(box.corners, m), boxCorner(box.corners, m + 1) };
-    std::vector<std::vector<Eigen::Vector3d>> targets(fit.size());
-    for (size_t k = 0; k < fit.size(); ++k)
-    {
-      for (const Vec3& corner : pair)
-      {
-        targets[k].push_back(motions[k].first * toEigen(corner) + motions[k].second);
-      }
-    }
-    box.skin[static_cast<size_t>(m)] = fitCornerSkin(pair, joints, fit, targets);
-    box.skin[static_cast<size_t>(m + 1)] = box.skin[static_cast<size_t>(m)];
-  }
-  std::vector<std::vector<Matrix4>> all = fit;
-  all.insert(all.end(), check.begin(), check.end());
-  for (const std::vector<Matrix4>& matrices : check)
-  {
-    posed.push_back(poseSamples(s, matrices));
-  }
-  const double pad = (1.0 + options.padding) * requiredPadding(box, bind, diagonal, all, posed);
-  const SidePads pads{ pad, pad, pad, pad, pad, pad };
-  box.corners = boxCorners(bind, pads);
-  for (size_t k = 0; k < fit.size(); ++k)
-  {
-    const double tight = obbVolume(pcaBox(posed[k], 0.5 * options.minExtent * diagonal));
-    ratios.push_back(posedBoxFrame(poseBox(box, fit[k])).volume / tight);
+    figures.posed.push_back(posedBoxFrame(poseBox(box, fit.matrices[k])).volume);
+    figures.tight.push_back(obbVolume(pcaBox(frames.posed[k], 0.5 * options.minExtent * diagonal)));
   }
   return box;
 }
+
+void summarize(const VolumeFigures& figures, SkinnedBoxesResult& result)
+{
+  std::vector<double> ratios;
+  double posed = 0.0, tight = 0.0;
+  for (size_t k = 0; k < figures.posed.size(); ++k)
+  {
+    ratios.push_back(figures.posed[k] / figures.tight[k]);
+    result.meanVolumeRatio += ratios.back() / static_cast<double>(figures.posed.size());
+    result.largestVolumeRatio = std::max(result.largestVolumeRatio, ratios.back());
+    posed += figures.posed[k];
+    tight += figures.tight[k];
+  }
+  result.summedVolumeRatio = tight > 0.0 ? posed / tight : 0.0;
+  if (!ratios.empty())
+  {
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+    result.medianVolumeRatio = ratios[ratios.size() / 2];
+  }
+}
 } // namespace
 
-std::array<std::array<double, 3>, 8> poseBox(
+std::array<std::array<double, 3>, 4> poseBox(
   const SkinnedBox& box, const std::vector<Matrix4>& matrices)
 {
-  std::array<Vec3, 8> posed{};
-  for (int m = 0; m < 8; ++m)
+  const Corners q = frameCorners(box, matrices);
+  Corners out{};
+  for (size_t r = 0; r < 3; ++r)
   {
-    posed[static_cast<size_t>(m)] =
-      skinPoint(boxCorner(box.corners, m), box.skin[static_cast<size_t>(m)], matrices);
+    double pivot = q[0][r];
+    for (size_t k = 0; k < 3; ++k)
+    {
+      pivot += box.lo[k] * (q[k + 1][r] - q[0][r]);
+    }
+    out[0][r] = pivot;
+    for (size_t k = 0; k < 3; ++k)
+    {
+      out[k + 1][r] = pivot + (box.hi[k] - box.lo[k]) * (q[k + 1][r] - q[0][r]);
+    }
   }
-  return posed;
+  return out;
 }
 
-BoxFrame posedBoxFrame(const std::array<std::array<double, 3>, 8>& corners)
+BoxFrame posedBoxFrame(const std::array<std::array<double, 3>, 4>& corners)
 {
   BoxFrame frame;
   frame.pivot = corners[0];
   Eigen::Matrix3d axes;
-  axes.col(0) = toEigen(corners[1]) - toEigen(corners[0]);
-  axes.col(1) = toEigen(corners[2]) - toEigen(corners[0]);
-  axes.col(2) = toEigen(corners[4]) - toEigen(corners[0]);
-  const Eigen::Matrix3d inverse = axes.inverse();
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const Vec3& q : corners)
+  for (int k = 0; k < 3; ++k)
   {
-    const Eigen::Vector3d u = inverse * (toEigen(q) - toEigen(corners[0]));
-    lo = lo.cwiseMin(u);
-    hi = hi.cwiseMax(u);
+    axes.col(k) = toEigen(corners[static_cast<size_t>(k + 1)]) - toEigen(corners[0]);
   }
+  frame.volume = std::abs(axes.determinant());
+  const Eigen::Matrix3d inverse = frame.volume > 0.0
+    ? Eigen::Matrix3d(axes.inverse())
+    : Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
   for (int r = 0; r < 3; ++r)
   {
-    frame.lo[static_cast<size_t>(r)] = lo(r);
-    frame.hi[static_cast<size_t>(r)] = hi(r);
     for (int c = 0; c < 3; ++c)
     {
       frame.inverseAxes[static_cast<size_t>(3 * r + c)] = inverse(r, c);
     }
   }
-  frame.volume = std::abs(axes.determinant()) * (hi - lo).prod();
   return frame;
 }
 
@@ -481,8 +558,7 @@ bool boxContains(const BoxFrame& frame, const std::array<double, 3>& point, doub
   {
     const double u = frame.inverseAxes[3 * r] * x[0] + frame.inverseAxes[3 * r + 1] * x[1] +
       frame.inverseAxes[3 * r + 2] * x[2];
-    const double slack = tolerance * (frame.hi[r] - frame.lo[r]);
-    if (!(u >= frame.lo[r] - slack && u <= frame.hi[r] + slack))
+    if (!(u >= -tolerance && u <= 1.0 + tolerance))
     {
       return false;
     }
@@ -499,30 +575,277 @@ SkinnedBoxesResult fitSkinnedBoxes(
     throw InputError("fitSkinnedBoxes: the atlas is not skinned (it needs a Skin attribute and a "
                      "rig; build it from a skinned input)");
   }
-  const std::vector<std::vector<Matrix4>> fit =
-    frameMatrices(atlas.rig, std::max(1, options.framesPerAnimation), true);
-  const std::vector<std::vector<Matrix4>> check =
+  const FrameSet fit = frameMatrices(atlas.rig, std::max(1, options.framesPerAnimation), true);
+  const FrameSet check =
     frameMatrices(atlas.rig, std::max(0, options.checkFramesPerAnimation), false);
   SkinnedBoxesResult result;
-  result.frames = static_cast<int64_t>(fit.size());
-  std::vector<double> ratios;
-  for (size_t c = 0; c < atlas.charts.size(); ++c)
+  result.frames = static_cast<int64_t>(fit.matrices.size());
+  const size_t n = atlas.charts.size();
+  result.boxes.resize(n);
+  // Charts in parallel, each with its own figures, joined in chart order.
+  std::vector<VolumeFigures> perChart(n);
+  parallel_for(
+    static_cast<int64_t>(n),
+    [&](int64_t c)
+    {
+      const ChartSamples s = chartSamples(atlas, static_cast<int32_t>(c), skin);
+      result.boxes[static_cast<size_t>(c)] =
+        fitChart(s, fit, check, options, perChart[static_cast<size_t>(c)]);
+    },
+    progress);
+  VolumeFigures figures;
+  for (const VolumeFigures& f : perChart)
   {
-    progress.report(static_cast<double>(c) / static_cast<double>(atlas.charts.size()));
-    const ChartSamples s = chartSamples(atlas, static_cast<int32_t>(c), skin);
-    result.boxes.push_back(fitChart(s, fit, check, options, ratios));
+    figures.posed.insert(figures.posed.end(), f.posed.begin(), f.posed.end());
+    figures.tight.insert(figures.tight.end(), f.tight.begin(), f.tight.end());
   }
-  for (double r : ratios)
-  {
-    result.meanVolumeRatio += r / static_cast<double>(ratios.size());
-    result.largestVolumeRatio = std::max(result.largestVolumeRatio, r);
-  }
-  if (!ratios.empty())
-  {
-    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-    result.medianVolumeRatio = ratios[ratios.size() / 2];
-  }
-  progress.report(1.0);
+  summarize(figures, result);
   return result;
+}
+} // namespace tc
+
+namespace tc
+{
+namespace
+{
+/// Charts per block of poseLodBoxes: the unit of parallel scheduling, whose posed corners and
+/// frames wait on the stack between the two stages.
+constexpr int32_t kPoseBlock = 256;
+/// From this many charts on, blocks run in parallel (as in selectLevels).
+constexpr int32_t kParallelPoseCharts = 16384;
+/// Floats of a broadcast palette entry: every one of a joint's 12 values 4 times, once per corner
+/// lane, so that one vector load multiplies it into the 4 corners.
+constexpr int kBroadcastFloats = 4 * kPaletteFloats;
+
+/// The joint slot of `joint` in a box's `slots`, added when new.
+/// @throws InputError when the box already has 4 other joints
+int32_t jointSlot(std::array<int32_t, 4>& slots, int32_t& used, int32_t joint, size_t box)
+{
+  for (int32_t s = 0; s < used; ++s)
+  {
+    if (slots[static_cast<size_t>(s)] == joint)
+    {
+      return s;
+    }
+  }
+  if (used == 4)
+  {
+    throw InputError("LodSkinnedBoxes: box " + std::to_string(box) +
+      " has skins with more than 4 distinct joints; a box is posed by at most 4 (fit it with "
+      "tc::fitSkinnedBoxes)");
+  }
+  slots[static_cast<size_t>(used)] = joint;
+  return used++;
+}
+
+/// A block's charts as lanes: one value per chart of the block.
+using Lanes = Eigen::Array<float, Eigen::Dynamic, 1, 0, kPoseBlock, 1>;
+using LaneMap = Eigen::Map<Lanes>;
+/// Posed corners of a block's charts, coordinate r of corner i at [4 r + i][chart].
+using BlockCorners = float[12][kPoseBlock];
+
+/// Stage 1 of a block: the skinned corners of every chart posed by linear blend skinning. Its 4
+/// lanes (c0, c2, c3, idle) are the inner loops, which the compiler turns into vector operations:
+/// per joint slot, 12 broadcast palette loads and 24 multiply-adds pose all 4.
+void poseCorners(const LodSkinnedBoxes& boxes, const float* broadcast, int32_t begin, int32_t count,
+  BlockCorners& out)
+{
+  for (int32_t l = 0; l < count; ++l)
+  {
+    const size_t c = static_cast<size_t>(begin + l);
+    const float* x = boxes.corners.data() + 12 * c;
+    float q[3][4] = {};
+    for (int32_t s = 0; s < boxes.jointCount[c]; ++s)
+    {
+      const float* m = broadcast + kBroadcastFloats * static_cast<size_t>(boxes.joints[4 * c + s]);
+      const float* w = boxes.weights.data() + 16 * c + 4 * static_cast<size_t>(s);
+      for (int r = 0; r < 3; ++r)
+      {
+        const float* row = m + 16 * r;
+        for (int i = 0; i < 4; ++i)
+        {
+          q[r][i] +=
+            w[i] * (row[i] * x[i] + row[4 + i] * x[4 + i] + row[8 + i] * x[8 + i] + row[12 + i]);
+        }
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int i = 0; i < 4; ++i)
+      {
+        out[4 * r + i][l] = q[r][i];
+      }
+    }
+  }
+}
+
+/// Stage 2 of a block: the posed frame as frameCorners builds it, the charts as lanes (Eigen
+/// arrays, whose square root is a vector instruction where std::sqrt stays scalar to set errno);
+/// then per chart the box of its range, in LodCharts' layout, and eq. (6) on its axes, which for
+/// orthogonal axes is the sum of the products of their lengths.
+void frameBlock(const LodSkinnedBoxes& boxes, BlockCorners& q, int32_t begin, int32_t count,
+  float* box, float* worldArea)
+{
+  const auto at = [&](int r, int lane) { return LaneMap(q[4 * r + lane], count); };
+  const auto norm = [](const Lanes* v)
+  { return (v[0].square() + v[1].square() + v[2].square()).sqrt(); };
+  const auto cross = [](const Lanes* a, const Lanes* b, Lanes* out)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      const int u = (r + 1) % 3, v = (r + 2) % 3;
+      out[r] = a[u] * b[v] - a[v] * b[u];
+    }
+  };
+  // e[k]: the unit axes e1 = unit(A_2' x A_3), e2 = e3 x e1, e3 = unit(A_3); length[k]: |A_k|.
+  Lanes a2[3], e[3][3], length[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    a2[r] = at(r, 1) - at(r, 0);
+    e[2][r] = at(r, 2) - at(r, 0);
+  }
+  cross(a2, e[2], e[0]);
+  const float tiny = std::numeric_limits<float>::min();
+  length[0] = Eigen::Map<const Lanes>(boxes.thickness.data() + begin, count);
+  length[1] = norm(a2);
+  length[2] = norm(e[2]);
+  const Lanes inverse0 = norm(e[0]).max(tiny).inverse(), inverse2 = length[2].max(tiny).inverse();
+  for (int r = 0; r < 3; ++r)
+  {
+    e[0][r] *= inverse0;
+    e[2][r] *= inverse2;
+  }
+  cross(e[2], e[0], e[1]);
+  for (int32_t l = 0; l < count; ++l)
+  {
+    const size_t c = static_cast<size_t>(begin + l);
+    const float* range = boxes.range.data() + 6 * c;
+    float* o = box + 12 * c;
+    float extent[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      extent[k] = range[3 + k] * length[k](l);
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      float pivot = q[4 * r][l];
+      for (int k = 0; k < 3; ++k)
+      {
+        pivot += range[k] * length[k](l) * e[k][r](l);
+        o[3 + 3 * k + r] = extent[k] * e[k][r](l);
+      }
+      o[r] = pivot;
+    }
+    worldArea[c] = extent[0] * extent[1] + extent[0] * extent[2] + extent[1] * extent[2];
+  }
+}
+
+/// Box `c`'s skins into `out`'s joint slots and weights (lane j: SkinnedBox::skin[j]).
+void addSkins(const SkinnedBox& box, size_t c, LodSkinnedBoxes& out)
+{
+  std::array<int32_t, 4> slots{};
+  int32_t used = 0;
+  for (size_t lane = 0; lane < 3; ++lane)
+  {
+    const PointSkin& skin = box.skin[lane];
+    for (size_t m = 0; m < static_cast<size_t>(kMaxInfluences); ++m)
+    {
+      const float w = skin.weights[m];
+      if (!(w >= 0.0f) || !std::isfinite(w) || skin.joints[m] < 0)
+      {
+        throw InputError("LodSkinnedBoxes: box " + std::to_string(c) + " skin " +
+          std::to_string(lane) + " has joint " + std::to_string(skin.joints[m]) + " with weight " +
+          std::to_string(w) + "; want joints >= 0 and finite weights >= 0");
+      }
+      if (w > 0.0f)
+      {
+        const int32_t s = jointSlot(slots, used, skin.joints[m], c);
+        out.weights[16 * c + 4 * static_cast<size_t>(s) + lane] += w;
+        out.paletteJoints = std::max(out.paletteJoints, skin.joints[m] + 1);
+      }
+    }
+  }
+  std::copy(slots.begin(), slots.end(), out.joints.begin() + static_cast<std::ptrdiff_t>(4 * c));
+  out.jointCount[c] = used;
+}
+} // namespace
+
+LodSkinnedBoxes LodSkinnedBoxes::fromBoxes(const std::vector<SkinnedBox>& boxes)
+{
+  const size_t n = boxes.size();
+  LodSkinnedBoxes out;
+  out.corners.resize(12 * n);
+  out.joints.assign(4 * n, 0);
+  out.weights.assign(16 * n, 0.0f);
+  out.thickness.resize(n);
+  out.jointCount.assign(n, 0);
+  out.range.resize(6 * n);
+  for (size_t c = 0; c < n; ++c)
+  {
+    const SkinnedBox& box = boxes[c];
+    for (size_t k = 0; k < 3; ++k)
+    {
+      out.range[6 * c + k] = static_cast<float>(box.lo[k]);
+      out.range[6 * c + 3 + k] = static_cast<float>(box.hi[k] - box.lo[k]);
+    }
+    out.thickness[c] = static_cast<float>(bindThickness(box));
+    // The idle lane 3 poses c0 again, with no weight.
+    for (size_t lane = 0; lane < 4; ++lane)
+    {
+      const size_t i = lane < 3 ? kSkinnedCorners[lane] : 0;
+      for (size_t r = 0; r < 3; ++r)
+      {
+        out.corners[12 * c + 4 * r + lane] = static_cast<float>(box.corners[3 * i + r]);
+      }
+    }
+    addSkins(box, c, out);
+  }
+  return out;
+}
+
+void poseLodBoxes(
+  const LodSkinnedBoxes& boxes, const float* palette, int32_t joints, float* box, float* worldArea)
+{
+  const size_t n = boxes.jointCount.size();
+  if (boxes.corners.size() != 12 * n || boxes.joints.size() != 4 * n ||
+    boxes.weights.size() != 16 * n || boxes.range.size() != 6 * n || boxes.thickness.size() != n)
+  {
+    throw InputError("poseLodBoxes: the box arrays disagree (want corners #C x 12, joints #C x 4, "
+                     "weights #C x 16, range #C x 6, thickness #C for #C = jointCount.size() = " +
+      std::to_string(n) + "); build them with LodSkinnedBoxes::fromBoxes");
+  }
+  if (joints < boxes.paletteJoints)
+  {
+    throw InputError("poseLodBoxes: the palette has " + std::to_string(joints) +
+      " joints, the boxes use " + std::to_string(boxes.paletteJoints) +
+      "; pass the skinning matrices of the rig the boxes were fitted to");
+  }
+  // Row r, column k of joint j at [48 j + 16 r + 4 k + lane].
+  std::vector<float> broadcast(static_cast<size_t>(kBroadcastFloats) * static_cast<size_t>(joints));
+  for (size_t e = 0; e < broadcast.size(); ++e)
+  {
+    broadcast[e] = palette[e / 4];
+  }
+  const int32_t count = boxes.size();
+  const int32_t blocks = (count + kPoseBlock - 1) / kPoseBlock;
+  const auto block = [&](int64_t b)
+  {
+    const int32_t begin = static_cast<int32_t>(b) * kPoseBlock;
+    const int32_t size = std::min(count, begin + kPoseBlock) - begin;
+    BlockCorners corners;
+    poseCorners(boxes, broadcast.data(), begin, size, corners);
+    frameBlock(boxes, corners, begin, size, box, worldArea);
+  };
+  if (count >= kParallelPoseCharts)
+  {
+    parallel_for(blocks, block, Progress(), 1);
+  }
+  else
+  {
+    for (int32_t b = 0; b < blocks; ++b)
+    {
+      block(b);
+    }
+  }
 }
 } // namespace tc
