@@ -43,6 +43,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
+#include <vtkLogger.h>
 #include <vtkMath.h>
 #include <vtkMatrix4x4.h>
 #include <vtkMultiBlockDataSet.h>
@@ -577,6 +578,8 @@ std::string RendererName(vtkRenderWindow* window)
 int main(int argc, char* argv[])
 {
   std::setvbuf(stdout, nullptr, _IOLBF, 0); // figures appear as they come, also into a file
+  // The filters' reports (tcMeshPreparation's repairs of wuson) are logged as INFO: not figures.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_WARNING);
   const std::string file = argc > 1 && argv[1][0] != 0
     ? argv[1]
     : std::string(TC_SHARED_DATA_DIR) + "/skinned/wuson/wuson.glb";
