@@ -379,8 +379,8 @@ Corners frameCorners(const SkinnedBox& box, const std::vector<Matrix4>& matrices
 // side then moved out by `padding` times how far it reaches beyond [0, 1], and by the largest
 // change of that side between consecutive frames of a sequence: between two frames the chart
 // moves less than that where the motion is smooth. Exact at the frames, whatever the corners'
-// skins do.
-void fitRange(SkinnedBox& box, const Frames& frames, double padding)
+// skins do. False (the box unchanged) when the frame collapses at some frame.
+bool fitRange(SkinnedBox& box, const Frames& frames, double padding)
 {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   Eigen::Vector3d stepLo = Eigen::Vector3d::Zero(), stepHi = stepLo, lastLo = stepLo,
@@ -390,8 +390,7 @@ void fitRange(SkinnedBox& box, const Frames& frames, double padding)
     const BoxFrame frame = posedBoxFrame(frameCorners(box, frames.matrices[k]));
     if (!(frame.volume > 0.0))
     {
-      throw InputError("fitSkinnedBoxes: a chart's box collapses in a pose (its corners' skins "
-                       "do not follow the chart; check the Skin attribute)");
+      return false;
     }
     const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse(
       frame.inverseAxes.data());
@@ -418,6 +417,7 @@ void fitRange(SkinnedBox& box, const Frames& frames, double padding)
     box.lo[k] = lo(e) - padding * std::max(0.0, -lo(e)) - stepLo(e);
     box.hi[k] = hi(e) + padding * std::max(0.0, hi(e) - 1.0) + stepHi(e);
   }
+  return true;
 }
 
 // Volume figures of the fitted frames: per chart and frame the posed box's volume and the
@@ -477,7 +477,18 @@ SkinnedBox fitChart(const ChartSamples& s, const FrameSet& fit, const FrameSet& 
     frames.posed.push_back(poseSamples(s, check.matrices[k]));
   }
   setCorners(box, boxCorners(bind));
-  fitRange(box, frames, options.padding);
+  if (!fitRange(box, frames, options.padding))
+  {
+    // The chords c0-c2 and c0-c3 fall parallel in some pose (a chart folded flat across a
+    // joint): the frame then follows c0's skin alone, a blend of rotations, which keeps its
+    // edges apart.
+    box.skin[1] = box.skin[2] = box.skin[0];
+    if (!fitRange(box, frames, options.padding))
+    {
+      throw InputError("fitSkinnedBoxes: a chart's box collapses in a pose (its skin maps it "
+                       "flat; check the Skin attribute and the skinning matrices)");
+    }
+  }
   for (size_t k = 0; k < fit.matrices.size(); ++k)
   {
     figures.posed.push_back(posedBoxFrame(poseBox(box, fit.matrices[k])).volume);
