@@ -8,6 +8,12 @@
  * step), as tcGeometryImages makes it (see tcAtlasConversion.h). Every float is read back bit
  * for bit. A missing, truncated, corrupt or foreign file is an error that names the file and
  * what is wrong.
+ *
+ * A skinned atlas (one with a rig) announces the key times of its Animation as TIME_STEPS and
+ * TIME_RANGE in seconds, as tcMeshReader does for the file it was built from, and gives each
+ * requested time as DATA_TIME_STEP with the animation's name (field AnimationName): the atlas
+ * itself does not change with time, a renderer (tcLODMapper) poses it. The file is read once per
+ * file name and modification time; a new time costs no read.
  */
 #ifndef tcAtlasReader_h
 #define tcAtlasReader_h
@@ -16,6 +22,7 @@
 
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
+#include <memory>
 #include <string>
 
 class TRICHARTIO_EXPORT tcAtlasReader : public vtkMultiBlockDataSetAlgorithm
@@ -31,6 +38,13 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// The animation of a skinned atlas's rig whose key times are announced: its name, or its
+  /// index as digits; "" (default) the first. An unknown name is an error that lists them.
+  vtkSetStdStringFromCharMacro(Animation);
+  vtkGetCharFromStdStringMacro(Animation);
+  ///@}
+
   /// True if `fileName` is an OpenEXR file that holds a TriChart atlas.
   static bool CanReadFile(const char* fileName);
 
@@ -38,13 +52,19 @@ protected:
   tcAtlasReader();
   ~tcAtlasReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   tcAtlasReader(const tcAtlasReader&) = delete;
   void operator=(const tcAtlasReader&) = delete;
 
+  bool ReadCached();
+
   std::string FileName;
+  std::string Animation;
+  struct Cache;
+  std::unique_ptr<Cache> Cached;
 };
 
 #endif

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcLODRepresentation.h"
 
+#include "tcMeshConversion.h"
+
+#include "tc/common/array_names.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -104,19 +108,24 @@ bool SharesLeaves(vtkDataObject* a, vtkDataObject* b)
 }
 
 /// The latest modification of `data` or of any of its leaves (their arrays included).
-vtkMTimeType TreeMTime(vtkDataObject* data)
+/// What decides whether an input is the atlas last converted: the latest modification of its
+/// leaves (the chart table and the images) and its rig. The multiblock itself is left out: a
+/// skinned atlas's reader gives a new one at every time (with the time and the animation's
+/// name), sharing the same leaves, and a new time must not convert the atlas again.
+std::pair<vtkMTimeType, std::string> AtlasStamp(vtkDataObject* data)
 {
-  vtkMTimeType time = data->GetMTime();
-  if (auto* tree = vtkDataObjectTree::SafeDownCast(data))
+  vtkMTimeType time = 0;
+  auto* tree = vtkDataObjectTree::SafeDownCast(data);
+  if (!tree)
   {
-    for (vtkDataObject* leaf :
-      vtk::Range(tree,
-        vtk::DataObjectTreeOptions::VisitOnlyLeaves | vtk::DataObjectTreeOptions::TraverseSubTree))
-    {
-      time = std::max(time, leaf ? leaf->GetMTime() : 0);
-    }
+    return { data->GetMTime(), "" };
   }
-  return time;
+  for (vtkDataObject* leaf : vtk::Range(tree,
+         vtk::DataObjectTreeOptions::VisitOnlyLeaves | vtk::DataObjectTreeOptions::TraverseSubTree))
+  {
+    time = std::max(time, leaf ? leaf->GetMTime() : 0);
+  }
+  return { time, tcvtk::GetTextField(data->GetFieldData(), tc::kRig) };
 }
 } // namespace
 
@@ -147,14 +156,23 @@ int tcLODRepresentation::RequestData(
     ? vtkDataObject::GetData(inputVector[0], 0)
     : nullptr;
   // An update of the same, unmodified input keeps the conversion rather than converting again.
-  const bool unchanged =
-    input && this->Atlas && input == this->Input && TreeMTime(input) == this->InputTime;
+  const auto stamp = input ? AtlasStamp(input) : std::pair<vtkMTimeType, std::string>();
+  const bool unchanged = input && this->Atlas && input == this->Input && stamp == this->InputStamp;
+  // A skinned atlas plays the animation its reader names (the first when none is named); a
+  // text field reads back line by line, each line ended.
+  std::string animation =
+    input ? tcvtk::GetTextField(input->GetFieldData(), tc::kAnimationName) : "";
+  if (!animation.empty() && animation.back() == '\n')
+  {
+    animation.pop_back();
+  }
+  this->Mapper->SetAnimation(animation.c_str());
   if (!unchanged)
   {
     this->Atlas = nullptr;
     vtkMath::UninitializeBounds(this->Bounds);
     this->Input = input;
-    this->InputTime = input ? TreeMTime(input) : 0;
+    this->InputStamp = stamp;
     if (input)
     {
       this->Atlas = this->MeasureAtlas(DeliverableCopy(input));
@@ -232,6 +250,8 @@ int tcLODRepresentation::ProcessViewRequest(
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
+    // The animation toolbar's time poses a skinned atlas (the mapper skins on the GPU).
+    this->Mapper->SetAnimationTime(this->GetUpdateTimeValid() ? this->GetUpdateTime() : 0.0);
     this->UseDeliveredAtlas(vtkPVView::GetDeliveredPiece(inInfo, this));
   }
   return 1;

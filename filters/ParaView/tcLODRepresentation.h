@@ -41,6 +41,7 @@
 #include <vtkSmartPointer.h>
 
 #include <string>
+#include <utility>
 
 class vtkDataObject;
 
@@ -147,10 +148,10 @@ private:
   vtkNew<vtkActor> Actor;
   /// The atlas to deliver (a shallow copy of the input); null when the input is not an atlas.
   vtkSmartPointer<vtkDataObject> Atlas;
-  /// The input Atlas was made from, and its latest modification (TreeMTime): an unchanged
+  /// The input Atlas was made from, and its AtlasStamp (leaves and rig): an unchanged
   /// input keeps Atlas and the mapper's conversion of it.
   vtkSmartPointer<vtkDataObject> Input;
-  vtkMTimeType InputTime = 0;
+  std::pair<vtkMTimeType, std::string> InputStamp; // AtlasStamp of Input when converted
   /// The piece delivered when there is nothing to draw.
   vtkNew<vtkMultiBlockDataSet> NoAtlas;
   double Bounds[6] = { 1, -1, 1, -1, 1, -1 };

@@ -9,12 +9,13 @@ def check(condition, what):
         print("FAILED:", what)
 
 
-def build_atlas(ns, mesh, atlas_file, **images):
+def build_atlas(ns, mesh, atlas_file, reader_options=None, **images):
     """Runs the static pipeline of the plugin's proxies (in `ns`, where LoadPlugin put them) on
-    `mesh` and writes the atlas to `atlas_file` with TriChart Atlas Writer; `images` sets
-    properties of TriChart Geometry Images (e.g. SampleBudget). Returns the images proxy."""
+    `mesh` and writes the atlas to `atlas_file` with TriChart Atlas Writer; `reader_options`
+    sets properties of TriChart Mesh Reader (e.g. BindPose), `images` of TriChart Geometry
+    Images (e.g. SampleBudget). Returns the images proxy."""
     from paraview.simple import OutputPort, SaveData, UpdatePipeline
-    reader = ns["TriChartMeshReader"](FileName=mesh)
+    reader = ns["TriChartMeshReader"](FileName=mesh, **(reader_options or {}))
     prep = ns["TriChartMeshPreparation"](Input=reader)
     curv = ns["TriChartCurvature"](Input=prep)
     clusters = ns["TriChartSpectralClustering"](Input=curv)
@@ -39,8 +40,9 @@ def black_view(size=400):
     return view
 
 
-def lit_pixels(png_file, threshold=8):
-    """(pixels brighter than `threshold` in any colour channel, all pixels) of a PNG file."""
+def lit_mask(png_file, threshold=8):
+    """(the indices of the pixels brighter than `threshold` in any colour channel, as a set,
+    and the number of all pixels) of a PNG file."""
     from vtkmodules.vtkIOImage import vtkPNGReader
     png = vtkPNGReader()
     png.SetFileName(png_file)
@@ -48,7 +50,13 @@ def lit_pixels(png_file, threshold=8):
     pixels = png.GetOutput().GetPointData().GetScalars()
     components = pixels.GetNumberOfComponents()
     total = pixels.GetNumberOfTuples()
-    lit = sum(1 for t in range(total)
-              if any(pixels.GetValue(t * components + c) > threshold
-                     for c in range(min(components, 3))))
+    lit = {t for t in range(total)
+           if any(pixels.GetValue(t * components + c) > threshold
+                  for c in range(min(components, 3)))}
     return lit, total
+
+
+def lit_pixels(png_file, threshold=8):
+    """(pixels brighter than `threshold` in any colour channel, all pixels) of a PNG file."""
+    lit, total = lit_mask(png_file, threshold)
+    return len(lit), total

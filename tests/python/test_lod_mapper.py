@@ -145,3 +145,57 @@ def test_color_by_attribute_maps_it_through_the_lookup_table(atlas):
     rgb = pixels(window)
     assert ((rgb[:, 0] > 40) & (rgb[:, 2] < 10)).sum() == 0
     assert (rgb.max(axis=1) > 40).sum() > 400
+
+
+def test_a_skinned_atlas_is_posed_on_the_gpu_per_instance(shared_data, tmp_path):
+    """The snake built into an atlas and drawn by tcLODMapper as two instances, each at its own
+    time: every vertex the GPU draws (read back by transform feedback) lies on the finest level
+    rebuilt and posed on the CPU (trichart.pose) at its instance's time, and the two differ."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkStaticPointLocator
+
+    glb = shared_data / "skinned" / "snake_fbx" / "snake_fbx.glb"
+    trichart.build(glb, tmp_path / "snake.exr")
+    atlas = trichart.read_atlas(tmp_path / "snake.exr")
+    finest = trichart.rebuild(atlas)
+    duration = trichart.time_steps(glb)[-1]
+    times = (0.3 * duration, 0.8 * duration)
+    mapper, window = scene(atlas)
+    seconds = vtkDoubleArray()
+    for t in times:
+        seconds.InsertNextValue(t)
+    instances = vtkDoubleArray()
+    instances.SetNumberOfComponents(16)
+    for _ in times:
+        instances.InsertNextTuple([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+    mapper.SetInstanceMatrices(instances)
+    mapper.SetInstanceTimes(seconds)
+    mapper.SetFixedLevel(15)  # every chart at its finest
+    mapper.CaptureVerticesOn()
+    window.Render()
+    assert mapper.GetSkinned()
+    captured = vtk_to_numpy(mapper.GetCapturedVertices())
+    captured = captured[captured[:, 3] >= 0]
+    rest = vtk_to_numpy(finest.GetPoints().GetData())
+    diagonal = np.linalg.norm(rest.max(axis=0) - rest.min(axis=0))
+    rng = np.random.default_rng(3)
+    for instance, t in enumerate(times):
+        posed = trichart.pose(finest, t)
+        cloud = vtkPolyData()
+        cloud.SetPoints(posed.GetPoints())
+        locator = vtkStaticPointLocator()
+        locator.SetDataSet(cloud)
+        locator.BuildLocator()
+        mine = captured[captured[:, 7] == instance][:, :3]
+        assert len(mine) > 0
+        worst = 0.0
+        for p in mine[rng.choice(len(mine), size=min(3000, len(mine)), replace=False)]:
+            q = posed.GetPoint(locator.FindClosestPoint(p))
+            worst = max(worst, float(np.linalg.norm(np.array(q) - p)) / diagonal)
+        print(f"instance {instance} at {t:.3f} s: largest distance to CPU posing {worst:.2e}")
+        assert worst < 1e-6
+    first = captured[captured[:, 7] == 0][:, :3]
+    second = captured[captured[:, 7] == 1][:, :3]
+    assert np.abs(first - second).max() > 0.01 * diagonal

@@ -2295,6 +2295,20 @@ TEST_F(AtlasIo, ARigRoundTripsBitExactlyAsVersion6)
   expectBitIdentical(withTextures(atlas), tc::readAtlas(file("rig_textures.exr")));
 }
 
+TEST_F(AtlasIo, ItsRigReadsFromTheHeadersAlone)
+{
+  const tc::Atlas atlas = withRig(latticeAtlas());
+  const std::string path = file("rig.exr");
+  tc::writeAtlas(atlas, path);
+  EXPECT_EQ(tc::encodeRig(tc::readAtlasRig(path)), tc::encodeRig(atlas.rig));
+  tc::writeAtlas(latticeAtlas(), file("bare.exr"));
+  EXPECT_TRUE(tc::readAtlasRig(file("bare.exr")).empty());
+  const std::string text = file("not_an_atlas.exr");
+  std::ofstream(text) << "not an atlas";
+  EXPECT_THROW(tc::readAtlasRig(text), tc::InputError);
+  EXPECT_THROW(tc::readAtlasRig(file("missing.exr")), tc::InputError);
+}
+
 TEST_F(AtlasIo, RefusesADamagedRig)
 {
   const std::string good = file("rig.exr");

@@ -783,4 +783,20 @@ Atlas readAtlas(const std::string& path, const Progress& progress)
   progress.report(1.0);
   return atlas;
 }
+
+Rig readAtlasRig(const std::string& path)
+{
+  exrFileSize(path);
+  checkHeaders(path);
+  try
+  {
+    Imf::MultiPartInputFile file(path.c_str());
+    return parseMetadata(path, storedMetadata(path, file.header(0))).atlas.rig;
+  }
+  catch (const Iex::BaseExc& exrError)
+  {
+    throw InputError("cannot read atlas " + path + ": OpenEXR cannot read its headers (" +
+      exrError.what() + "); the file is truncated or damaged (write the atlas again)");
+  }
+}
 } // namespace tc

@@ -59,6 +59,11 @@ bool isAtlasFileName(const std::string& path);
 ///   atlas that fails tc::validateAtlas
 Atlas readAtlas(const std::string& path, const Progress& progress = {});
 
+/// The rig (skeleton and animations) of the atlas file `path`, from its headers alone: what a
+/// reader announces (the animation's time steps) before it reads the texels.
+/// @throws tc::InputError  as readAtlas for a file that is no atlas or whose metadata is damaged
+Rig readAtlasRig(const std::string& path);
+
 /// Whether `path` is an OpenEXR file whose headers carry TriChart atlas metadata (headers only:
 /// cheap, never throws; readAtlas still checks everything else).
 bool isAtlasFile(const std::string& path);
