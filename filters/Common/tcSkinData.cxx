@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcSkinData.h"
 
+#include "tcMeshConversion.h"
+
 #include "tc/common/array_names.h"
 
 #include <vtkCellArray.h>
@@ -85,5 +87,25 @@ void AddSkinArrays(vtkPointData* pointData, const tc::SkinWeights& skin)
   std::copy(skin.weights.begin(), skin.weights.end(), weights->GetPointer(0));
   pointData->AddArray(joints);
   pointData->AddArray(weights);
+}
+
+bool ReadSkinArrays(
+  vtkPointData* pointData, vtkIdType points, tc::SkinWeights& skin, std::string& error)
+{
+  error.clear();
+  if (!pointData->GetArray(tc::kSkinIndices) && !pointData->GetArray(tc::kSkinWeights))
+  {
+    return false;
+  }
+  std::vector<double> joints, weights;
+  if (!ReadArray(pointData, tc::kSkinIndices, points, tc::kMaxInfluences, joints, error) ||
+    !ReadArray(pointData, tc::kSkinWeights, points, tc::kMaxInfluences, weights, error))
+  {
+    return false;
+  }
+  skin = tc::SkinWeights();
+  skin.joints.assign(joints.begin(), joints.end());
+  skin.weights.assign(weights.begin(), weights.end());
+  return true;
 }
 } // namespace tcvtk

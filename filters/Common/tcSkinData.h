@@ -10,7 +10,9 @@
 #include "tc/skinning/skin.h"
 
 #include <vtkSmartPointer.h>
+#include <vtkType.h>
 
+#include <string>
 #include <vector>
 
 class vtkPointData;
@@ -26,6 +28,11 @@ TRICHARTCOMMON_EXPORT vtkSmartPointer<vtkPolyData> SkeletonPolyData(
 
 /// Adds the point arrays SkinIndices (int, 4 components) and SkinWeights (float, 4) of `skin`.
 TRICHARTCOMMON_EXPORT void AddSkinArrays(vtkPointData* pointData, const tc::SkinWeights& skin);
+
+/// The skin of `points` points from the point arrays SkinIndices and SkinWeights into `skin`;
+/// false with `error` saying what is missing or wrong (an absent pair is "": not skinned).
+TRICHARTCOMMON_EXPORT bool ReadSkinArrays(
+  vtkPointData* pointData, vtkIdType points, tc::SkinWeights& skin, std::string& error);
 } // namespace tcvtk
 
 #endif

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcFeatureRefinement.h"
+#include "tcSkinData.h"
 
 #include "tcMeshConversion.h"
 
 #include "tc/common/array_names.h"
 #include "tc/features/feature_refinement.h"
+#include "tc/skinning/deformation_clustering.h"
 
 #include <vtkCellData.h>
 #include <vtkFieldData.h>
@@ -88,6 +90,12 @@ int tcFeatureRefinement::RequestData(
     return 0;
   }
 
+  std::vector<int32_t> skinRegions;
+  if (this->SkinLines && !this->SkinRegions(input, mesh, skinRegions))
+  {
+    return 0;
+  }
+
   // 4. Refine.
   tc::FeatureRefinementOptions options;
   options.bandFraction = this->BandFraction;
@@ -102,6 +110,7 @@ int tcFeatureRefinement::RequestData(
   options.creaseAngle = this->CreaseAngle;
   options.creaseLineAngle = this->CreaseLineAngle;
   options.seamSides = std::move(seams);
+  options.skinRegions = std::move(skinRegions);
   options.cornerRings = this->CornerRings;
   options.cornerFraction = this->CornerFraction;
   tc::FeatureRefinementResult result;
@@ -137,6 +146,23 @@ int tcFeatureRefinement::RequestData(
   return 1;
 }
 
+bool tcFeatureRefinement::SkinRegions(
+  vtkPolyData* input, const tc::TriMesh& mesh, std::vector<int32_t>& regions)
+{
+  tc::SkinWeights skin;
+  std::string error;
+  if (!tcvtk::ReadSkinArrays(input->GetPointData(), mesh.numPoints(), skin, error))
+  {
+    if (!error.empty())
+    {
+      vtkErrorMacro("Cannot refine features: " << error << " (or turn SkinLines off).");
+    }
+    return error.empty();
+  }
+  regions = tc::boneDominanceClusters(mesh.triangles, skin).clusterId;
+  return true;
+}
+
 void tcFeatureRefinement::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -152,6 +178,7 @@ void tcFeatureRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CreaseAngle: " << this->CreaseAngle << "\n";
   os << indent << "CreaseLineAngle: " << this->CreaseLineAngle << "\n";
   os << indent << "SeamLines: " << this->SeamLines << "\n";
+  os << indent << "SkinLines: " << this->SkinLines << "\n";
   os << indent << "CornerRings: " << this->CornerRings << "\n";
   os << indent << "CornerFraction: " << this->CornerFraction << "\n";
 }

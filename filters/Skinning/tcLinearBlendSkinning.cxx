@@ -2,6 +2,7 @@
 #include "tcLinearBlendSkinning.h"
 
 #include "tcMeshConversion.h"
+#include "tcSkinData.h"
 
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
@@ -31,13 +32,9 @@ int tcLinearBlendSkinning::RequestData(
   // 2. Validate: the skin arrays, the rig, a finite time.
   const std::string text = tcvtk::GetTextField(input->GetFieldData(), tc::kRig);
   const vtkIdType np = input->GetNumberOfPoints();
-  std::vector<double> joints, weights;
+  tc::SkinWeights skin;
   std::string error;
-  if (text.empty() ||
-    !tcvtk::ReadArray(
-      input->GetPointData(), tc::kSkinIndices, np, tc::kMaxInfluences, joints, error) ||
-    !tcvtk::ReadArray(
-      input->GetPointData(), tc::kSkinWeights, np, tc::kMaxInfluences, weights, error))
+  if (!tcvtk::ReadSkinArrays(input->GetPointData(), np, skin, error) || text.empty())
   {
     vtkErrorMacro("Cannot pose the mesh: it needs the point arrays "
       << tc::kSkinIndices << " and " << tc::kSkinWeights << " and the field " << tc::kRig
@@ -60,9 +57,6 @@ int tcLinearBlendSkinning::RequestData(
     const int a = tc::findAnimation(rig.animations, this->Animation);
     const tc::Animation* animation = a >= 0 ? &rig.animations[a] : nullptr;
     animationName = animation ? animation->name : "";
-    tc::SkinWeights skin;
-    skin.joints.assign(joints.begin(), joints.end());
-    skin.weights.assign(weights.begin(), weights.end());
     std::vector<double> bind(3 * static_cast<size_t>(np));
     for (vtkIdType p = 0; p < np; ++p)
     {

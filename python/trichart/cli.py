@@ -93,7 +93,8 @@ def _build_options(args):
             "cluster_options": {"number_of_clusters": args.clusters},
             "feature_options": {"crease_angle": args.crease_angle,
                                 "crease_line_angle": args.crease_lines,
-                                "seam_lines": not args.no_seam_lines},
+                                "seam_lines": not args.no_seam_lines,
+                                "skin_lines": args.skin_lines},
             "base_options": {"target_faces": args.base_faces, "max_error": args.max_error},
             "geometry_options": {"max_level": args.max_level, "sample_budget": args.budget,
                                  "error_target": args.error_target,
@@ -530,6 +531,10 @@ def _add_build_parser(sub, d):
     p.add_argument("--no-seam-lines", action="store_true",
                    help="do not make the mesh's texture seams feature lines (each chart then "
                         "spans a seam and its texture smears across it)")
+    p.add_argument("--skin-lines", action="store_true",
+                   help="a skinned mesh: make the boundaries between the faces different joints "
+                        "dominate feature lines, so that no chart straddles a bending joint "
+                        "(more charts; helps a character of few bones most)")
     p.add_argument("--no-appearance", action="store_true",
                    help="leave the mesh's texture coordinates, vertex colours and base-colour "
                         "texture out of the atlas")

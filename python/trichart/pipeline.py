@@ -359,7 +359,8 @@ def refine_features(clusters, progress=None, **options):
     crease_angle (degrees; straightening never trades a crease edge for a smoother one),
     crease_line_angle (degrees; chains of edges this sharp join the feature lines; 0, the
     default: only the cluster boundaries), seam_lines (texture seams the preparation marked
-    join the feature lines, default True).
+    join the feature lines, default True), skin_lines (on a skinned mesh, the boundaries between
+    the faces different joints dominate join the feature lines, default False).
     """
     f = _run_on(TriChartFeatures.tcFeatureRefinement(), clusters, "features", progress, options)
     return _output(f, 0), _output(f, 1), _output(f, 2)

@@ -260,3 +260,15 @@ def test_frames_read_through_one_reader_are_each_as_read_alone(shared_data):
     assert np.array_equal(_points(rest), _points(trichart.read_mesh(glb)))
     assert np.array_equal(_points(later), _points(trichart.read_mesh(glb, time=1.0, animation=1)))
     assert not np.array_equal(_points(posed), _points(rest))
+
+
+def test_skin_lines_make_the_joints_boundaries_feature_lines(shared_data):
+    """skin_lines: on the snake, the boundaries between the faces its joints dominate join the
+    feature lines (off by default: the lines of the curvature clusters alone)."""
+    fbx = shared_data / "skinned" / "snake_fbx" / "animation_with_skeleton.fbx"
+    prepared, _ = trichart.prepare(trichart.read_mesh(fbx))
+    clusters, _ = trichart.cluster(trichart.curvature(prepared)[0])
+    plain = trichart.refine_features(clusters)[1].GetNumberOfCells()
+    skinned = trichart.refine_features(clusters, skin_lines=True)[1].GetNumberOfCells()
+    print(f"snake: {plain} feature lines, {skinned} with the skin's")
+    assert skinned > plain

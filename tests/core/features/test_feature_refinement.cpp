@@ -663,6 +663,29 @@ TEST(FeatureRefinement, FullChainFindsFandiskLargeSharpEdges)
   EXPECT_GE(withoutSpurs.recall, 0.84);
 }
 
+TEST(FeatureRefinement, SkinRegionBoundariesBecomeLines)
+{
+  // One curvature cluster (no boundary of its own) on a rounded box whose faces two joints
+  // dominate, split at x = 0.1 and at y = -0.2: every edge between the joints' faces is on a
+  // line, and no other edge is.
+  const tc::TriMesh mesh = tctest::roundedBox(1.0, 0.2, 8).mesh;
+  const Inputs in = inputsOf(mesh);
+  const std::vector<int32_t> one(mesh.numTriangles(), 0);
+  tc::FeatureRefinementOptions options;
+  for (int64_t f = 0; f < mesh.numTriangles(); ++f)
+  {
+    const auto c = centroid(mesh, f);
+    options.skinRegions.push_back(c[0] > 0.1 ? 7 : c[1] > -0.2 ? 2 : 4);
+  }
+  EXPECT_EQ(refine(mesh, in, one).numLines(), 0);
+  const tc::FeatureRefinementResult r = refine(mesh, in, one, options);
+  const EdgeSet boundary = labelBoundary(mesh, options.skinRegions);
+  EXPECT_GT(boundary.size(), 10u);
+  EXPECT_EQ(lineEdges(r), boundary);
+  options.skinRegions.pop_back();
+  EXPECT_THROW(refine(mesh, in, one, options), tc::InputError);
+}
+
 TEST(FeatureRefinement, CreaseLinesFindTheCreasesThatNoClusterBoundaryFollows)
 {
   // couplingdown (genus 9): 16 spectral clusters run along almost none of its 988 sharp edges;

@@ -131,6 +131,24 @@ void addSeamLines(const TriMesh& mesh, const EdgeTable& edges,
     freeSegments(edges, result, [&](int64_t e) { return seamEdge[static_cast<size_t>(e)] != 0; });
   appendChains(mesh, segments, meanCurvature, 1, result);
 }
+
+void addSkinLines(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& meanCurvature, const FeatureRefinementOptions& options,
+  FeatureRefinementResult& result)
+{
+  const std::vector<int32_t>& region = options.skinRegions;
+  if (region.empty())
+  {
+    return;
+  }
+  const std::vector<int64_t> segments = freeSegments(edges, result,
+    [&](int64_t e)
+    {
+      const int32_t* f = edges.edgeFaces.data() + edges.faceOffsets[e];
+      return region[static_cast<size_t>(f[0])] != region[static_cast<size_t>(f[1])];
+    });
+  appendChains(mesh, segments, meanCurvature, 1, result);
+}
 } // namespace refinement
 } // namespace detail
 } // namespace tc

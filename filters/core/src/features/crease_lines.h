@@ -37,6 +37,13 @@ void addCreaseLines(const TriMesh& mesh, const EdgeTable& edges,
 void addSeamLines(const TriMesh& mesh, const EdgeTable& edges,
   const std::vector<double>& meanCurvature, const FeatureRefinementOptions& options,
   FeatureRefinementResult& result);
+
+/// Appends to result's lines the skin chains: the manifold edges between faces of different
+/// options.skinRegions that no kept line holds, chained and cut as the seam chains are, every
+/// chain kept. No-op when options.skinRegions is empty.
+void addSkinLines(const TriMesh& mesh, const EdgeTable& edges,
+  const std::vector<double>& meanCurvature, const FeatureRefinementOptions& options,
+  FeatureRefinementResult& result);
 } // namespace refinement
 } // namespace detail
 } // namespace tc

@@ -29,8 +29,9 @@ using detail::kPi;
 
 void validate(const TriMesh& mesh, const std::vector<int32_t>& clusterId,
   const std::vector<double>& meanCurvature, const std::vector<double>& faceMeanCurvature,
-  const std::vector<uint8_t>& crestVertex, const std::vector<uint8_t>& seamSides)
+  const std::vector<uint8_t>& crestVertex, const FeatureRefinementOptions& options)
 {
+  const std::vector<uint8_t>& seamSides = options.seamSides;
   const size_t nv = static_cast<size_t>(mesh.numPoints());
   const size_t nf = static_cast<size_t>(mesh.numTriangles());
   auto mismatch = [](const char* what, size_t got, size_t want, const char* of)
@@ -58,6 +59,10 @@ void validate(const TriMesh& mesh, const std::vector<int32_t>& clusterId,
   if (!seamSides.empty() && seamSides.size() != nf)
   {
     mismatch("seamSides", seamSides.size(), nf, "triangles (or none)");
+  }
+  if (!options.skinRegions.empty() && options.skinRegions.size() != nf)
+  {
+    mismatch("skinRegions", options.skinRegions.size(), nf, "triangles (or none)");
   }
   if (!crestVertex.empty() && crestVertex.size() != nv)
   {
@@ -220,7 +225,7 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   const std::vector<uint8_t>& crestVertex, const FeatureRefinementOptions& options,
   const Progress& progress)
 {
-  validate(mesh, clusterId, meanCurvature, faceMeanCurvature, crestVertex, options.seamSides);
+  validate(mesh, clusterId, meanCurvature, faceMeanCurvature, crestVertex, options);
   const int64_t nv = mesh.numPoints();
   const int64_t nf = mesh.numTriangles();
   FeatureRefinementResult result;
@@ -266,6 +271,7 @@ FeatureRefinementResult refineFeatures(const TriMesh& mesh, const std::vector<in
   keepFeatureSegments(mesh, segments, meanCurvature, result);
   addCreaseLines(mesh, edges, dihedral, meanCurvature, options, result);
   addSeamLines(mesh, edges, meanCurvature, options, result);
+  addSkinLines(mesh, edges, meanCurvature, options, result);
   progress.report(0.75);
 
   // 5. Corners.

@@ -100,6 +100,12 @@ struct FeatureRefinementOptions
   /// a seam and its grid interpolates texture coordinates only where they are continuous. Input
   /// data rather than a setting; it lives here so that the entry point keeps its signature.
   std::vector<uint8_t> seamSides;
+  /// Skin regions of the input (#F: the joint that dominates each face, tc::boneDominanceClusters'
+  /// clusterId; empty: none): the edges between faces of different joints are joined to the
+  /// feature lines whatever their curvature (step 4d), so that no chart straddles a bending joint
+  /// (Feng et al. 2010, 4.3: "the resulting triangular patches do not cross bending joints"),
+  /// where a flat region of the rest pose bends into a curved one. Input data, like seamSides.
+  std::vector<int32_t> skinRegions;
 };
 
 struct FeatureRefinementResult
@@ -147,6 +153,8 @@ struct FeatureRefinementResult
 /// 4b. Crease chains (creaseLineAngle, creaseLineEdges) are appended to the lines.
 /// 4c. Seam chains (options.seamSides: every seam edge no line holds, chained like the crease
 ///    chains, of any length) are appended to the lines.
+/// 4d. Skin chains (options.skinRegions: every edge between faces that different joints
+///    dominate, no line holds), likewise.
 /// 4. Corners: vertices whose |H| is the largest within cornerRings rings (ties go to the
 ///    smaller id), the top ceil(cornerFraction x count) of them by |H| that reach
 ///    curvatureThreshold; with junctionCorners also every vertex where 3 or more feature-line
