@@ -295,10 +295,15 @@ void benchSkinnedBoxes(
   std::cout << "ms per frame (median of " << kCalls << ")  1 thread   " << threads << " threads\n";
   const double poseOne = medianMilliseconds([&] { single.execute(pose); });
   const double poseAll = medianMilliseconds(pose);
+  const auto select = [&] { tc::selectLevels(posed, view, options, levels.data()); };
+  const double selectOne = medianMilliseconds([&] { single.execute(select); });
+  const double selectAll = medianMilliseconds(select);
   const double one = medianMilliseconds([&] { single.execute(poseSelect); });
   const double all = medianMilliseconds(poseSelect);
   std::cout << "  " << std::left << std::setw(26) << "pose" << std::right << std::setw(8)
             << fixed(poseOne, 3) << std::setw(11) << fixed(poseAll, 3) << "\n";
+  std::cout << "  " << std::left << std::setw(26) << "select (posed boxes)" << std::right
+            << std::setw(8) << fixed(selectOne, 3) << std::setw(11) << fixed(selectAll, 3) << "\n";
   std::cout << "  " << std::left << std::setw(26) << "pose + select" << std::right << std::setw(8)
             << fixed(one, 3) << std::setw(11) << fixed(all, 3) << "\n";
   std::cout << "goal <= 2 ms to pose and select 100K charts: "
