@@ -494,6 +494,7 @@ PoseCheck CheckPoses(
 struct LodStats
 {
   double selection = 0.0, drawList = 0.0, charts = 0.0;
+  std::vector<double> atLevel = std::vector<double>(16, 0.0); // charts drawn per level, summed
   vtkIdType chartInstances = 0;
   bool skinned = false;
 };
@@ -533,6 +534,10 @@ void SetUpLod(Flight& flight, tcLODMapper* lod, vtkMultiBlockDataSet* atlas, con
     stats.selection += lod->GetSelectionSeconds();
     stats.drawList += lod->GetDrawListSeconds();
     stats.charts += static_cast<double>(lod->GetChartsDrawn());
+    for (size_t level = 0; level < stats.atLevel.size(); ++level)
+    {
+      stats.atLevel[level] += static_cast<double>(lod->GetChartsAtLevel(static_cast<int>(level)));
+    }
     return static_cast<double>(lod->GetTrianglesDrawn());
   };
 }
@@ -647,6 +652,17 @@ int main(int argc, char* argv[])
     plain.run.triangles / std::max(withLod.run.triangles, 1.0), 1e3 * stats.selection / frames,
     1e3 * stats.drawList / frames, stats.charts / frames,
     static_cast<long long>(stats.chartInstances));
+  // Which levels the drawn charts are at (level d: 4^d triangles; 0, one triangle, the coarsest).
+  std::printf("  levels of the drawn charts:");
+  for (size_t level = 0; level < stats.atLevel.size(); ++level)
+  {
+    if (stats.atLevel[level] > 0.0)
+    {
+      std::printf(
+        " %zu: %.1f%%", level, 100.0 * stats.atLevel[level] / std::max(stats.charts, 1.0));
+    }
+  }
+  std::printf("\n");
   // A chart is one triangle at its coarsest level: the atlas cannot draw a character in fewer.
   std::printf("  the atlas's floor: %lld charts, so at least %lld triangles per character in view "
               "(the input mesh has %lld)\n",
