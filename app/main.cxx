@@ -32,6 +32,10 @@ struct ViewerOptions
   QString GltfPath;
   int Level = -1;
   int Instances = 1;
+  bool Animation = false;
+  QString AnimationChoice;
+  bool Time = false;
+  double Seconds = 0.0;
   tcCameraView Camera;
 };
 
@@ -78,6 +82,14 @@ void AddOptions(QCommandLineParser& parser, const QString& stageList)
   parser.addOption(QCommandLineOption("instances",
     "Instances of the lod stage's crowd, on a square grid of the ground (1 to 2500, default 1).",
     "n", "1"));
+  parser.addOption(QCommandLineOption("animation",
+    "A skinned atlas in the lod stage: the animation that poses it, by name or index (default "
+    "the first).",
+    "name"));
+  parser.addOption(QCommandLineOption("time",
+    "A skinned atlas in the lod stage: pose it at this time of the animation, in seconds (0 to "
+    "its duration; default 0). In a crowd each instance adds its own phase.",
+    "seconds"));
 }
 
 /// The stages of --stage, in order; false (said on stderr) for an unknown or missing name.
@@ -153,6 +165,16 @@ bool ReadCamera(const QCommandLineParser& parser, tcCameraView& camera)
     ReadReal(parser, "zoom", 0.05, 20.0, camera.Zoom);
 }
 
+/// --animation and --time; false (said on stderr) for a time that is no number >= 0. Whether the
+/// atlas has that animation, and that time, is known once it is open.
+bool ReadPose(const QCommandLineParser& parser, ViewerOptions& options)
+{
+  options.Animation = parser.isSet("animation");
+  options.AnimationChoice = parser.value("animation");
+  options.Time = parser.isSet("time");
+  return !options.Time || ReadReal(parser, "time", 0.0, 1e6, options.Seconds);
+}
+
 /// Reads the command line (--help exits here); false if it is refused (said on stderr).
 bool ReadOptions(const QApplication& app, ViewerOptions& options)
 {
@@ -174,7 +196,7 @@ bool ReadOptions(const QApplication& app, ViewerOptions& options)
   if (!ReadInteger(
         parser, "level", -1, std::numeric_limits<int>::max(), "an integer >= -1", options.Level) ||
     !ReadInteger(parser, "instances", 1, 2500, "an integer from 1 to 2500", options.Instances) ||
-    !ReadCamera(parser, options.Camera))
+    !ReadCamera(parser, options.Camera) || !ReadPose(parser, options))
   {
     return false;
   }
@@ -249,6 +271,14 @@ int main(int argc, char* argv[])
   window.SetReconstructionLevel(options.Level);
   window.SetInstances(options.Instances);
   window.SetCameraView(options.Camera);
+  if (options.Animation)
+  {
+    window.SetPoseAnimation(options.AnimationChoice);
+  }
+  if (options.Time)
+  {
+    window.SetPoseTime(options.Seconds);
+  }
   const bool batch = options.Screenshot || options.SaveAtlas || options.ExportGltf;
   window.SetBatchMode(batch);
   RouteLogs(batch);

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcLODView.h"
 
+#include "tcAtlasConversion.h"
 #include "tcColorMaps.h"
 #include "tcLODMapper.h"
 
 #include "tc/common/array_names.h"
+#include "tc/common/errors.h"
+#include "tc/gim/atlas.h"
 
 #include <QStringList>
 
@@ -28,7 +31,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <utility>
+
+namespace
+{
+/// Instance k's phase as a fraction of the animation: 0 for the first (a crowd of one is at the
+/// time asked for), for the others a fixed hash of k (splitmix64's finalizer). Not an even
+/// spread by index: the instances stand in rows, and phases that grow along a row would run
+/// across the crowd as a wave. A hash of the index alone keeps each instance's phase when the
+/// crowd grows, and the same on every machine (for the baselines).
+double PhaseFraction(int k)
+{
+  if (k == 0)
+  {
+    return 0.0;
+  }
+  uint64_t z = static_cast<uint64_t>(k) * 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+}
 
 tcLODView::tcLODView(vtkRenderWindow* window, vtkRenderer* renderer)
   : Window(window)
@@ -114,9 +140,10 @@ void tcLODView::SetFrameCallback(std::function<void(const tcLODFrame&)> callback
   this->FrameDrawn = std::move(callback);
 }
 
-void tcLODView::Show(vtkDataObject* atlas, bool entering)
+bool tcLODView::Show(vtkDataObject* atlas, bool entering)
 {
-  if (atlas != this->AtlasSource || atlas->GetMTime() != this->AtlasTime)
+  const bool fresh = atlas != this->AtlasSource || atlas->GetMTime() != this->AtlasTime;
+  if (fresh)
   {
     auto copy = vtkSmartPointer<vtkMultiBlockDataSet>::New();
     copy->DeepCopy(atlas);
@@ -124,11 +151,14 @@ void tcLODView::Show(vtkDataObject* atlas, bool entering)
     this->AtlasSource = atlas;
     this->AtlasTime = atlas->GetMTime();
     this->UpdateLevelLegend(atlas);
-    // The crowd is laid out from the bounds of one instance.
+    // The crowd is laid out from the bounds of one instance, in the pose shown.
+    this->ReadAnimations(atlas);
     this->Mapper->SetInstanceMatrices(nullptr);
+    this->UpdatePoses();
     this->Mapper->GetBounds(this->Bounds);
   }
   this->UpdateCrowd();
+  this->UpdatePoses();
   this->Actor->VisibilityOn();
   if (!this->Window->HasRenderer(this->OverlayRenderer))
   {
@@ -143,6 +173,137 @@ void tcLODView::Show(vtkDataObject* atlas, bool entering)
   {
     this->Frame();
   }
+  return fresh;
+}
+
+void tcLODView::ReadAnimations(vtkDataObject* atlas)
+{
+  // What poses an atlas for the mapper (tcLODSkinning): a rig and a Skin attribute. An atlas
+  // that does not convert has none; the mapper reports why when it draws.
+  tc::Atlas converted;
+  std::string error;
+  std::vector<tc::Animation> animations;
+  if (tcvtk::ToAtlas(atlas, converted, error) && !converted.rig.empty() &&
+    tc::findAttribute(converted, tc::kAtlasSkin) >= 0)
+  {
+    animations = std::move(converted.rig.animations);
+  }
+  // The same animations (a pipeline run that changed a parameter, not the file) keep the pose.
+  const auto same = [](const tc::Animation& a, const tc::Animation& b)
+  { return a.name == b.name && a.duration == b.duration; };
+  if (!std::equal(animations.begin(), animations.end(), this->Animations.begin(),
+        this->Animations.end(), same))
+  {
+    this->AnimationIndex = animations.empty() ? -1 : 0;
+    this->Time = 0.0;
+  }
+  this->Animations = std::move(animations);
+}
+
+QStringList tcLODView::GetAnimationNames() const
+{
+  QStringList names;
+  for (const tc::Animation& animation : this->Animations)
+  {
+    names << QString::fromStdString(animation.name);
+  }
+  return names;
+}
+
+double tcLODView::GetAnimationDuration() const
+{
+  return this->AnimationIndex < 0
+    ? 0.0
+    : this->Animations[static_cast<size_t>(this->AnimationIndex)].duration;
+}
+
+int tcLODView::FindAnimation(const QString& choice, QString& error) const
+{
+  try
+  {
+    const int index = tc::findAnimation(this->Animations, choice.toStdString());
+    if (index < 0)
+    {
+      error = "the atlas has no animation: it is not skinned, or its rig has none";
+    }
+    return index;
+  }
+  catch (const tc::InputError& e)
+  {
+    error = e.what();
+    return -1;
+  }
+}
+
+void tcLODView::SetAnimation(int index)
+{
+  if (index < 0 || index >= static_cast<int>(this->Animations.size()))
+  {
+    return;
+  }
+  this->AnimationIndex = index;
+  this->Time = this->Time <= this->GetAnimationDuration() ? this->Time : 0.0;
+  this->UpdatePoses();
+  this->Render();
+}
+
+void tcLODView::SetAnimationTime(double seconds)
+{
+  this->Time = std::min(std::max(seconds, 0.0), this->GetAnimationDuration());
+  this->UpdatePoses();
+  this->Render();
+}
+
+void tcLODView::SetPhased(bool phased)
+{
+  this->Phased = phased;
+  this->UpdatePoses();
+  this->Render();
+}
+
+void tcLODView::UpdatePoses()
+{
+  if (this->AnimationIndex < 0)
+  {
+    this->Mapper->SetInstanceAnimations(nullptr);
+    this->Mapper->SetInstanceTimes(nullptr);
+    return;
+  }
+  // The animation by index, for every instance: a name may be another animation's too, or
+  // another's index as digits (the mapper's Animation takes either).
+  vtkNew<vtkIntArray> animations;
+  animations->SetNumberOfTuples(this->Instances);
+  animations->FillValue(this->AnimationIndex);
+  this->Mapper->SetInstanceAnimations(animations);
+  this->Mapper->SetAnimationTime(this->Time);
+  const double duration = this->GetAnimationDuration();
+  if (!this->Phased || this->Instances == 1 || duration <= 0.0)
+  {
+    this->Mapper->SetInstanceTimes(nullptr);
+    return;
+  }
+  vtkNew<vtkDoubleArray> times;
+  times->SetNumberOfTuples(this->Instances);
+  for (int k = 0; k < this->Instances; ++k)
+  {
+    // Time and phase are each in [0, duration]: one turn of the loop wraps their sum back.
+    const double t = this->Time + duration * PhaseFraction(k);
+    times->SetValue(k, t > duration ? t - duration : t);
+  }
+  this->Mapper->SetInstanceTimes(times);
+}
+
+QString tcLODView::PoseText() const
+{
+  if (this->AnimationIndex < 0 || !this->Mapper->GetSkinned())
+  {
+    return QString();
+  }
+  // One pass of arg: a name holding "%2" stays as it is.
+  return QString("animation '%1' at %2 s of %3 s%4")
+    .arg(this->GetAnimationNames()[this->AnimationIndex], QString::number(this->Time, 'f', 2),
+      QString::number(this->GetAnimationDuration(), 'f', 2),
+      this->Instances > 1 ? (this->Phased ? ", own phases" : ", in step") : "");
 }
 
 void tcLODView::Hide()
@@ -263,6 +424,7 @@ void tcLODView::SetInstances(int instances)
   if (this->IsShown())
   {
     this->UpdateCrowd();
+    this->UpdatePoses();
     this->Frame();
     this->Render();
   }
@@ -303,6 +465,7 @@ tcLODFrame tcLODView::Statistics() const
   frame.TrianglesDrawn = m->GetTrianglesDrawn();
   frame.ChartsDrawn = m->GetChartsDrawn();
   frame.Instances = m->GetNumberOfInstances();
+  frame.Animation = this->PoseText();
   return frame;
 }
 
@@ -315,7 +478,7 @@ void tcLODView::OnRendered(vtkObject*, unsigned long, void*)
   // The 3-D layer is drawn and the overlay layer is next: these are this frame's figures.
   const tcLODFrame frame = this->Statistics();
   this->Overlay->SetInput(QString("fps %1\n%2 triangles drawn\n%3 charts drawn\n%4\n"
-                                  "LOD selection %5 ms\n%6 instance%7")
+                                  "LOD selection %5 ms\n%6 instance%7%8")
                             .arg(frame.Fps)
                             .arg(frame.TrianglesDrawn)
                             .arg(frame.ChartsDrawn)
@@ -323,6 +486,7 @@ void tcLODView::OnRendered(vtkObject*, unsigned long, void*)
                             .arg(frame.Selection)
                             .arg(frame.Instances)
                             .arg(frame.Instances == 1 ? "" : "s")
+                            .arg(frame.Animation.isEmpty() ? QString() : "\n" + frame.Animation)
                             .toStdString()
                             .c_str());
   if (this->FrameDrawn)

@@ -11,6 +11,11 @@
  * mapper chooses its levels while it draws) and before the overlay layer draws, so the figures
  * shown are those of the frame they are drawn over. The same figures go to the frame callback
  * (the window's summary).
+ *
+ * A skinned atlas (a Skin attribute and a rig with animations) is posed by the mapper at the
+ * view's animation and time; in a crowd each instance is at that time plus a phase of its own,
+ * so that the crowd does not move in lockstep. The view holds the pose; tcAnimationControls
+ * plays it.
  */
 #ifndef tcLODView_h
 #define tcLODView_h
@@ -23,7 +28,12 @@
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
+#include "tc/skinning/skin.h"
+
+#include <QStringList>
+
 #include <functional>
+#include <vector>
 
 class tcLODMapper;
 class vtkActor;
@@ -46,6 +56,9 @@ struct tcLODFrame
   vtkIdType TrianglesDrawn = 0;
   vtkIdType ChartsDrawn = 0;
   int Instances = 0;
+  /// "'name' at t s of d s" (and whether each instance has its own phase) for a posed frame;
+  /// "" when the atlas has no skin and rig, or no animation
+  QString Animation;
 };
 
 class tcLODView
@@ -66,8 +79,10 @@ public:
 
   /// Shows `atlas` (a copy of it: a render during a later pipeline run must not update the
   /// pipeline from inside it) in place of the other stages, with the LOD camera; frames the
-  /// crowd when `entering` the stage. Does not render.
-  void Show(vtkDataObject* atlas, bool entering);
+  /// crowd when `entering` the stage. Does not render. True when `atlas` is not the one shown
+  /// last: its animations were read anew, and the pose is the first animation at time 0 unless
+  /// the animations are those of the last atlas (then the pose is kept).
+  bool Show(vtkDataObject* atlas, bool entering);
 
   /// Hides the LOD stage and gives the 3-D view back its camera.
   void Hide();
@@ -94,6 +109,31 @@ public:
   ///@}
 
   ///@{
+  /// The pose of a skinned atlas. The names of its animations (none for an atlas without a
+  /// skin and a rig: it is drawn as it is); the animation shown (an index of them, -1 when there
+  /// are none); its duration and the crowd's time, in seconds (0 .. duration).
+  QStringList GetAnimationNames() const;
+  int GetAnimation() const { return this->AnimationIndex; }
+  double GetAnimationDuration() const;
+  double GetAnimationTime() const { return this->Time; }
+  ///@}
+
+  /// The index of the animation `choice` names: "" the first, a name, or an index as digits
+  /// (tc::findAnimation); -1 with `error` (which lists the animations) when it names none.
+  int FindAnimation(const QString& choice, QString& error) const;
+
+  ///@{
+  /// Each redraws at once if the stage shows. The animation (an index of GetAnimationNames; the
+  /// time is kept if the new one lasts that long, else 0); the crowd's time in seconds, clamped
+  /// to 0 .. duration; and whether each instance is at its own phase (default on): instance k
+  /// at the time plus its phase, wrapped into the animation (SetPhased(false): all in step).
+  void SetAnimation(int index);
+  void SetAnimationTime(double seconds);
+  void SetPhased(bool phased);
+  bool GetPhased() const { return this->Phased; }
+  ///@}
+
+  ///@{
   /// The last frame's timings, in milliseconds.
   double GetSelectionMilliseconds() const;
   double GetRenderMilliseconds() const;
@@ -101,6 +141,9 @@ public:
 
 private:
   void UpdateCrowd();
+  void ReadAnimations(vtkDataObject* atlas);
+  void UpdatePoses();
+  QString PoseText() const;
   tcLODFrame Statistics() const;
   void OnRendered(vtkObject*, unsigned long, void*);
   void BuildLevelLegend();
@@ -123,6 +166,10 @@ private:
   vtkMTimeType AtlasTime = 0;                 ///< and its modified time then
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 }; ///< the atlas's bounds, one instance
   int Instances = 1;
+  std::vector<tc::Animation> Animations; ///< the shown atlas's, when it has a skin and a rig
+  int AnimationIndex = -1;
+  double Time = 0.0;
+  bool Phased = true;
   bool Batch = false;
   unsigned long RenderedTag = 0;
   std::function<void(const tcLODFrame&)> FrameDrawn;

@@ -7,14 +7,19 @@
 #include <QFormLayout>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QVBoxLayout>
 
 #include <utility>
 
 tcParameterPanel::tcParameterPanel(Mode mode, QWidget* parent)
   : QWidget(parent)
   , PushMode(mode)
-  , Form(new QFormLayout(this))
+  , Form(new QFormLayout)
 {
+  // The form in a column, so that a widget below it (AddWidget) takes no room while hidden: a
+  // hidden row of a QFormLayout keeps its spacing.
+  auto* column = new QVBoxLayout(this);
+  column->addLayout(this->Form);
 }
 
 void tcParameterPanel::AddRow(const QString& name, QWidget* field, std::function<void()> push)
@@ -89,6 +94,12 @@ void tcParameterPanel::AddButton(
   button->setToolTip(toolTip);
   this->Form->addRow(button);
   connect(button, &QPushButton::clicked, this, std::move(clicked));
+}
+
+void tcParameterPanel::AddWidget(QWidget* widget)
+{
+  widget->setParent(this);
+  static_cast<QVBoxLayout*>(this->layout())->addWidget(widget);
 }
 
 void tcParameterPanel::Push() const

@@ -58,6 +58,10 @@ public:
   /// A button across the form (no parameter: nothing to push).
   void AddButton(const QString& text, const QString& toolTip, std::function<void()> clicked);
 
+  /// A widget below the form that pushes its own settings (nothing for Push to do), which takes
+  /// no room while hidden; the panel owns it.
+  void AddWidget(QWidget* widget);
+
   /// Sets every row's value through its setter.
   void Push() const;
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcStagePanels.h"
 
+#include "tcAnimationControls.h"
 #include "tcBaseComplex.h"
 #include "tcCurvature.h"
 #include "tcFeatureRefinement.h"
@@ -211,6 +212,8 @@ tcParameterPanel* tcStagePanels::LOD(
     "Look at the whole crowd from the front and a little to the side, 35 degrees above the "
     "ground",
     std::move(resetCamera));
+  // Below the rows, shown for a skinned atlas only (tcAnimationControls::Sync).
+  panel->AddWidget(new tcAnimationControls(view, panel));
   panel->Push();
   return panel;
 }

@@ -35,8 +35,9 @@ public:
   static tcParameterPanel* GeometryImages(tcGeometryImages* filter, QWidget* parent);
   static tcParameterPanel* Reconstruction(tcGeometryImageMesh* filter, QWidget* parent);
 
-  /// The LOD view's settings, pushed to `view` once here and then at each change; its "Reset
-  /// camera" button calls `resetCamera`.
+  /// The LOD view's settings, pushed to `view` once here and then at each change, with the
+  /// animation box of a skinned atlas (tcAnimationControls); its "Reset camera" button calls
+  /// `resetCamera`.
   static tcParameterPanel* LOD(tcLODView* view, std::function<void()> resetCamera, QWidget* parent);
 };
 

@@ -169,17 +169,23 @@ QString tcStageSummary::Stage(
 
 QString tcStageSummary::LOD(const tcLODFrame& frame)
 {
-  return QString("<b>%1</b><br>%2 charts x %3 instance%4<br>fps %5<br>%6 triangles drawn<br>%7 "
-                 "charts drawn<br>charts per level: %8<br>LOD selection %9 ms")
-    .arg(tcStage::Label(tcStage::LOD))
-    .arg(frame.Charts)
-    .arg(frame.Instances)
-    .arg(frame.Instances == 1 ? "" : "s")
-    .arg(frame.Fps)
-    .arg(frame.TrianglesDrawn)
-    .arg(frame.ChartsDrawn)
-    .arg(frame.PerLevel)
-    .arg(frame.Selection);
+  QString text =
+    QString("<b>%1</b><br>%2 charts x %3 instance%4<br>fps %5<br>%6 triangles drawn<br>%7 "
+            "charts drawn<br>charts per level: %8<br>LOD selection %9 ms")
+      .arg(tcStage::Label(tcStage::LOD))
+      .arg(frame.Charts)
+      .arg(frame.Instances)
+      .arg(frame.Instances == 1 ? "" : "s")
+      .arg(frame.Fps)
+      .arg(frame.TrianglesDrawn)
+      .arg(frame.ChartsDrawn)
+      .arg(frame.PerLevel)
+      .arg(frame.Selection);
+  if (!frame.Animation.isEmpty())
+  {
+    text += "<br>" + frame.Animation.toHtmlEscaped();
+  }
+  return text;
 }
 
 QString tcStageSummary::Title(int stage)

@@ -7,7 +7,8 @@
  * stage reports (the reader's and the preparation's reports, and what to check when the prepared
  * mesh is no closed, oriented manifold), its lines and corners, its patches, the atlas's charts
  * and mip steps, the reconstruction's levels and distance to the prepared mesh, and the
- * pipeline's note (the sliver retry). The LOD stage's summary is the figures of its last frame.
+ * pipeline's note (the sliver retry). The LOD stage's summary is the figures of its last frame,
+ * and the animation and time that pose a skinned atlas.
  */
 #ifndef tcStageSummary_h
 #define tcStageSummary_h

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tcViewerWindow.h"
 
+#include "tcAnimationControls.h"
 #include "tcLODView.h"
 #include "tcMeshPreparation.h"
 #include "tcMeshReader.h"
@@ -171,6 +172,7 @@ void tcViewerWindow::BuildPanels(QWidget* panel, QVBoxLayout* layout)
       this->LODView->Render();
     },
     this));
+  this->AnimationControls = this->ParameterPanel(tcStage::LOD)->findChild<tcAnimationControls*>();
   // The parameters scroll rather than grow the window past its size (screenshots keep one
   // size whatever the tallest panel holds); ConnectPipelineDock keeps the area as tall as the
   // shown panel.
@@ -224,23 +226,9 @@ void tcViewerWindow::ConnectPipelineDock(QPushButton* apply)
 {
   // The panel stack is as tall as the shown panel, not as the tallest one, so that the summary
   // below it has room.
-  connect(this->Panels, &QStackedWidget::currentChanged, this,
-    [this](int index)
-    {
-      for (int i = 0; i < this->Panels->count(); ++i)
-      {
-        const auto policy = i == index ? QSizePolicy::Preferred : QSizePolicy::Ignored;
-        this->Panels->widget(i)->setSizePolicy(policy, policy);
-      }
-      this->Panels->adjustSize();
-      // Short panels whole; a tall one to 14 lines of text, the rest scrolled, so that the
-      // summary below keeps its lines and the window its size.
-      const int height = this->Panels->currentWidget()->sizeHint().height();
-      this->PanelScroll->setMaximumHeight(height);
-      this->PanelScroll->setMinimumHeight(
-        std::min(height, 14 * this->PanelScroll->fontMetrics().lineSpacing()));
-    });
-  emit this->Panels->currentChanged(this->Panels->currentIndex());
+  connect(
+    this->Panels, &QStackedWidget::currentChanged, this, [this](int) { this->FitPanelScroll(); });
+  this->FitPanelScroll();
   connect(this->Stages, &QListWidget::currentRowChanged, this,
     [this](int row)
     {
@@ -279,6 +267,23 @@ void tcViewerWindow::ConnectPipelineDock(QPushButton* apply)
       this->StageView->SetEdgesVisible(on);
       this->RenderWindow->Render();
     });
+}
+
+void tcViewerWindow::FitPanelScroll()
+{
+  const int index = this->Panels->currentIndex();
+  for (int i = 0; i < this->Panels->count(); ++i)
+  {
+    const auto policy = i == index ? QSizePolicy::Preferred : QSizePolicy::Ignored;
+    this->Panels->widget(i)->setSizePolicy(policy, policy);
+  }
+  this->Panels->adjustSize();
+  // Short panels whole; a tall one to 14 lines of text, the rest scrolled, so that the summary
+  // below keeps its lines and the window its size.
+  const int height = this->Panels->currentWidget()->sizeHint().height();
+  this->PanelScroll->setMaximumHeight(height);
+  this->PanelScroll->setMinimumHeight(
+    std::min(height, 14 * this->PanelScroll->fontMetrics().lineSpacing()));
 }
 
 void tcViewerWindow::BuildProgress()
@@ -327,8 +332,16 @@ void tcViewerWindow::OpenDialog()
       ");;Atlases (*.exr);;All files (*)");
   if (!path.isEmpty())
   {
-    this->OpenFile(path, std::max(0, this->CurrentStage));
+    this->OpenChosenFile(path);
   }
+}
+
+void tcViewerWindow::OpenChosenFile(const QString& path)
+{
+  // The command line's pose is for the files it names.
+  this->PoseAnimation.reset();
+  this->PoseTime.reset();
+  this->OpenFile(path, std::max(0, this->CurrentStage));
 }
 
 void tcViewerWindow::ExportStage()
@@ -581,12 +594,32 @@ bool tcViewerWindow::ShowLOD(bool entering)
 {
   this->StageView->Hide();
   this->StageView->Forget();
-  this->LODView->Show(this->Pipeline->AtlasSource()->GetOutputDataObject(0), entering);
+  if (this->LODView->Show(this->Pipeline->AtlasSource()->GetOutputDataObject(0), entering))
+  {
+    if (!this->ApplyPose())
+    {
+      this->ShowFailure();
+      return false;
+    }
+    // Framed anew: the bounds are those of the pose just chosen.
+    if (entering)
+    {
+      this->LODView->Frame();
+    }
+  }
+  // The animation box shows for a skinned atlas only: the panel's height follows.
+  this->AnimationControls->Sync();
+  this->FitPanelScroll();
   // The statistics come from the frame: the render fills the summary (the LOD view's frame
   // callback). The panel just shown may resize the 3-D view; the levels depend on its size in
   // pixels, so the layout settles first.
   this->Info->setText(tcStageSummary::Title(tcStage::LOD));
   QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
+  if (!this->AnimationControls->isHidden())
+  {
+    // The panel scrolls past its 14 lines: a skinned atlas brings its animation box into view.
+    this->PanelScroll->ensureWidgetVisible(this->AnimationControls, 0, 0);
+  }
   this->RenderWindow->Render();
   if (this->Batch)
   {
@@ -597,6 +630,37 @@ bool tcViewerWindow::ShowLOD(bool entering)
               << this->LODView->GetRenderMilliseconds() << " ms\n";
   }
   return true;
+}
+
+bool tcViewerWindow::ApplyPose()
+{
+  if (!this->PoseAnimation && !this->PoseTime)
+  {
+    return true;
+  }
+  QString error;
+  const int index = this->LODView->FindAnimation(this->PoseAnimation.value_or(""), error);
+  if (index >= 0)
+  {
+    this->LODView->SetAnimation(index);
+    const double duration = this->LODView->GetAnimationDuration();
+    const double t = this->PoseTime.value_or(0.0);
+    if (t > duration)
+    {
+      error = QString("the time %1 s is past the end of the animation '%2' (%3 s)")
+                .arg(QString::number(t), this->LODView->GetAnimationNames()[index],
+                  QString::number(duration));
+    }
+    this->LODView->SetAnimationTime(t);
+  }
+  if (error.isEmpty())
+  {
+    return true;
+  }
+  this->Error =
+    QString("Cannot pose %1 as asked: %2").arg(QFileInfo(this->FileName).fileName(), error);
+  this->ReportError(this->Error);
+  return false;
 }
 
 void tcViewerWindow::PrintSummary() const
@@ -724,8 +788,7 @@ void tcViewerWindow::UpdateRecentMenu()
   for (const QString& path : settings.value("recentFiles").toStringList())
   {
     QAction* a = this->RecentMenu->addAction(path);
-    connect(a, &QAction::triggered, this,
-      [this, path]() { this->OpenFile(path, std::max(0, this->CurrentStage)); });
+    connect(a, &QAction::triggered, this, [this, path]() { this->OpenChosenFile(path); });
   }
   this->RecentMenu->setEnabled(!this->RecentMenu->isEmpty());
 }
@@ -743,7 +806,7 @@ void tcViewerWindow::dropEvent(QDropEvent* event)
   const QList<QUrl> urls = event->mimeData()->urls();
   if (!urls.isEmpty() && urls.first().isLocalFile())
   {
-    this->OpenFile(urls.first().toLocalFile(), std::max(0, this->CurrentStage));
+    this->OpenChosenFile(urls.first().toLocalFile());
   }
 }
 

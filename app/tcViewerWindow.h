@@ -25,6 +25,7 @@
 #include <vtkNew.h>
 
 #include <memory>
+#include <optional>
 
 class QCheckBox;
 class QComboBox;
@@ -37,6 +38,7 @@ class QScrollArea;
 class QStackedWidget;
 class QVBoxLayout;
 class QVTKOpenGLNativeWidget;
+class tcAnimationControls;
 class tcLODView;
 class tcParameterPanel;
 class tcStagePipeline;
@@ -84,6 +86,16 @@ public:
   /// anew when the LOD stage is shown.
   void SetInstances(int instances);
 
+  ///@{
+  /// The animation (a name, or an index as digits) and the time in seconds at which the LOD
+  /// stage poses each skinned atlas it shows anew (the command line's --animation and --time,
+  /// for the files it names: a file opened from the window forgets them); unset: the first
+  /// animation at 0. Showing an atlas that has no animation, or none of that name, or a time
+  /// past its end, fails with an error that says so.
+  void SetPoseAnimation(const QString& choice) { this->PoseAnimation = choice; }
+  void SetPoseTime(double seconds) { this->PoseTime = seconds; }
+  ///@}
+
   /// Colours the surface by this array of the shown output ("" for a plain surface).
   void SetColorArray(const QString& name);
 
@@ -119,9 +131,12 @@ private:
   void BuildDisplayOptions(QWidget* panel, QVBoxLayout* layout);
   void BuildSummary(QWidget* panel, QVBoxLayout* layout);
   void ConnectPipelineDock(QPushButton* apply);
+  void FitPanelScroll();
   void BuildProgress();
   void BuildFileMenu();
   void OpenDialog();
+  /// Opens a file chosen in the window (dialog, recent files, drop) on the shown stage.
+  void OpenChosenFile(const QString& path);
   void ExportStage();
   void SaveAtlasDialog();
   void ExportGltfDialog();
@@ -137,6 +152,7 @@ private:
   void ShowFailure();
   void SelectStage(int stage);
   bool ShowLOD(bool entering);
+  bool ApplyPose();
   void FillArrayChoices();
   void PrintSummary() const;
   void ReportError(const QString& message);
@@ -149,6 +165,7 @@ private:
   vtkNew<vtkRenderer> Renderer;
   std::unique_ptr<tcStageView> StageView;
   std::unique_ptr<tcLODView> LODView;
+  tcAnimationControls* AnimationControls = nullptr; // in the LOD panel
 
   QVTKOpenGLNativeWidget* View = nullptr;
   QListWidget* Stages = nullptr;
@@ -164,6 +181,8 @@ private:
   QMenu* RecentMenu = nullptr;
 
   tcCameraView CameraView;
+  std::optional<QString> PoseAnimation;
+  std::optional<double> PoseTime;
   QString FileName;
   QString Error;
   int CurrentStage = tcStage::Input;

@@ -1,12 +1,14 @@
 """trichart-viewer in batch mode: one picture per stage compared with its baseline, the
 reconstruction's error figures, the LOD stage's statistics (one bunny and a crowd), an atlas file
-written by the viewer opened on its reconstruction and its LOD view, and bad files (a missing or
-corrupt mesh or atlas, an atlas saved where it cannot go) reported on stderr while the window
-stays usable (no crash)."""
+written by the viewer opened on its reconstruction and its LOD view, a skinned atlas posed at a
+chosen time (a crowd at its own phases), and bad files and options (a missing or corrupt mesh or
+atlas, an atlas saved where it cannot go, an animation the atlas lacks) reported on stderr while
+the window stays usable (no crash)."""
 import os
 import pathlib
 import re
 import subprocess
+import sys
 
 import pytest
 
@@ -18,6 +20,10 @@ BUNNY = DATA / "meshes" / "bunny_npm.off"
 STAGES = ["input", "preparation", "curvature", "clusters", "features", "base", "patches", "atlas",
           "reconstruction", "lod"]
 CROWD = 16
+SHARED = pathlib.Path(os.environ.get("TRICHART_SHARED_DATA", ""))
+SNAKE = SHARED / "skinned" / "snake_fbx" / "snake_fbx.glb"
+SNAKE_ANIMATION = "Armature|ArmatureAction"  # its only animation, 0.83 s long
+WUSON = SHARED / "skinned" / "wuson" / "wuson.glb"
 
 
 def viewer(*args):
@@ -398,3 +404,82 @@ def test_export_gltf_writes_the_lod_chain_of_the_open_mesh(tmp_path):
     r = viewer(DATA / "meshes" / "textured_sphere.glb", "--stage", "atlas", "--export-gltf", bad)
     assert r.returncode != 0 and ".glb" in r.stderr, r.stderr
     assert not bad.exists()
+
+
+def build_skinned(tmp_path_factory, mesh, *options):
+    """The atlas of a skinned mesh of ../shared/data, built by `trichart build`."""
+    if not mesh.is_file():
+        pytest.skip(f"{mesh} is absent (../shared/data not beside the checkout)")
+    atlas = tmp_path_factory.mktemp(mesh.stem) / f"{mesh.stem}.exr"
+    r = subprocess.run([sys.executable, "-m", "trichart", "build", mesh, "-o", atlas, "-q",
+                        *options], capture_output=True, text=True, timeout=300)
+    if "No module named trichart" in r.stderr:
+        pytest.skip("the trichart package is not built (TRICHART_WRAP_PYTHON off)")
+    assert r.returncode == 0, r.stderr
+    return atlas
+
+
+@pytest.fixture(scope="module")
+def snake(tmp_path_factory):
+    """The skinned snake's atlas (a rig of 17 joints, one animation of 0.83 s)."""
+    return build_skinned(tmp_path_factory, SNAKE)
+
+
+@pytest.fixture(scope="module")
+def wuson(tmp_path_factory):
+    """The skinned wuson's atlas (three animations: Wuson_Run, Wuson_Walk, Wuson_Bind)."""
+    return build_skinned(tmp_path_factory, WUSON, "--fill-holes", "--split-non-manifold")
+
+
+def posed_lod(atlas, shot, *args):
+    """The LOD stage of `atlas` saved as `shot`, with the summary's pose line."""
+    r = viewer(atlas, "--stage", "lod", "--screenshot", shot, *args)
+    assert r.returncode == 0, r.stderr
+    return re.search(r"animation '(.*)' at (\S+) s of (\S+) s(, own phases|, in step)?",
+                     summary(r.stdout, "Level of detail"))
+
+
+def test_skinned_atlas_moves_with_the_time(snake, tmp_path):
+    start = posed_lod(snake, tmp_path / "start.png")
+    later = posed_lod(snake, tmp_path / "later.png", "--time", "0.4", "--animation", "0")
+    # Without --time, the first animation at 0; the index names the same animation.
+    assert start.groups()[:3] == (SNAKE_ANIMATION, "0.00", "0.83"), start.group(0)
+    assert later.groups()[:3] == (SNAKE_ANIMATION, "0.40", "0.83"), later.group(0)
+    # The snake bends: thousands of pixels change between the two poses.
+    moved = differing_pixels(tmp_path / "start.png", tmp_path / "later.png", 20)
+    print("snake pixels moved between 0 s and 0.4 s:", moved)
+    assert moved > 2000
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--animation", "walk"], "there is no animation 'walk'; the animations are "
+                              f"'{SNAKE_ANIMATION}' (0)"),
+    (["--animation", "1"], "there is no animation '1'"),
+    (["--time", "5"], f"the time 5 s is past the end of the animation '{SNAKE_ANIMATION}'")])
+def test_a_pose_the_atlas_lacks_is_reported(snake, tmp_path, args, message):
+    r = viewer(snake, "--stage", "lod", "--screenshot", tmp_path / "shot.png", *args)
+    assert r.returncode == 1, r.stderr
+    assert "trichart-viewer: error: Cannot pose snake_fbx.exr as asked: " + message in r.stderr, \
+        r.stderr
+
+
+def test_a_pose_of_an_atlas_without_a_rig_is_reported(bunny, tmp_path):
+    r = viewer(bunny["atlas"], "--stage", "lod", "--time", "0.5", "--screenshot",
+               tmp_path / "shot.png")
+    assert r.returncode == 1 and "the atlas has no animation" in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("time", ["-1", "soon", "nan"])
+def test_bad_time_is_refused(time):
+    r = viewer(BUNNY, "--stage", "lod", "--time", time, "--screenshot", "x.png")
+    assert r.returncode == 2 and "--time" in r.stderr, r.stderr
+
+
+def test_posed_crowd_matches_baseline(wuson, tmp_path):
+    # Nine wusons walking, each at 0.5 s plus its own phase: no two in step. By name: the rig has
+    # three animations, Wuson_Walk the second.
+    shot = tmp_path / "crowd.png"
+    pose = posed_lod(wuson, shot, "--instances", "9", "--animation", "Wuson_Walk", "--time", "0.5")
+    assert pose.groups() == ("Wuson_Walk", "0.50", "3.60", ", own phases"), pose.group(0)
+    ok, detail = compare_with_baseline(shot, DATA / "baselines" / "TestViewer_lod_wuson_crowd.png")
+    assert ok, detail
