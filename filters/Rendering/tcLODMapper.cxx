@@ -1134,10 +1134,9 @@ double* tcLODMapper::GetBounds()
   {
     try
     {
-      // Posed, the bounds of the posed boxes: they hold the posed surface (posing every sample
-      // of every instance on the CPU for exact bounds would cost what the GPU saves).
-      const std::array<double, 6> b =
-        in.posed ? PosedBounds(in.skinned, in.instances) : tc::drawnBounds(in.atlas, in.instances);
+      // Posed: the posed samples', or for a large crowd the posed boxes' (PosedBounds).
+      const std::array<double, 6> b = in.posed ? PosedBounds(in.atlas, in.skinned, in.instances)
+                                               : tc::drawnBounds(in.atlas, in.instances);
       std::copy(b.begin(), b.end(), in.bounds);
     }
     catch (const std::exception& e)

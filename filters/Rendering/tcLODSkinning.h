@@ -39,6 +39,13 @@ struct SkinnedAtlas
   std::vector<float> palettes;  ///< instances x joints x tc::kPaletteFloats, the frame's
   std::vector<float> posedBox;  ///< instances x #C x 12, the boxes posed by the palettes
   std::vector<float> posedArea; ///< instances x #C
+  /// Every chart's finest samples (image 0, each texel once) and their skins: the exact posed
+  /// bounds of a few instances (PosedBounds).
+  std::vector<double> finestPoints;
+  tc::SkinWeights finestSkin;
+  /// Each instance's animation and time, as PoseInstances last posed them.
+  std::vector<int> animations;
+  std::vector<double> times;
 };
 
 /// Fits the skinned boxes of `atlas` (tc::fitSkinnedBoxes) when it is skinned; `skinned.valid`
@@ -56,10 +63,15 @@ void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
 /// none of them (the bind pose is used then).
 int ChooseAnimation(const tc::Atlas& atlas, const std::string& choice, std::string& error);
 
-/// Axis-aligned bounds (xmin, xmax, ...) of every instance's posed chart boxes, each instance
-/// transformed by its row-major 4 x 4 matrix of `instances`: they hold the posed surface.
+/// Axis-aligned bounds (xmin, xmax, ...) of the posed surface of every instance, each transformed
+/// by its row-major 4 x 4 matrix of `instances`. Exact (the finest samples posed on the CPU, as
+/// tc::drawnBounds bounds an unposed atlas) while instances x samples stays below
+/// kExactBoundsPosings; above, the union of the posed chart boxes, which holds the surface but
+/// is larger: posing every sample of a large crowd each frame would cost what skinning on the
+/// GPU saves.
+constexpr int64_t kExactBoundsPosings = 4000000;
 std::array<double, 6> PosedBounds(
-  const SkinnedAtlas& skinned, const std::vector<double>& instances);
+  const tc::Atlas& atlas, const SkinnedAtlas& skinned, const std::vector<double>& instances);
 } // namespace tcvtk::lod
 
 #endif
