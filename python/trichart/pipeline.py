@@ -257,10 +257,17 @@ def read_skeleton(path, time=None, animation=None):
 
 
 def time_steps(path, animation=None):
-    """The times (seconds) a scene's animation or a sequence's frames are announced at; ()
-    for a static mesh."""
-    reader = _mesh_reader(path, animation, False)
-    run(reader, "read")
+    """The times (seconds) a scene's animation or a sequence's frames are announced at, or a
+    skinned atlas's (.exr: its rig's animation, as the mesh it was built from announces them);
+    () for a static mesh or atlas."""
+    if TriChartIO.tcAtlasReader.CanReadFile(str(path)):
+        reader = TriChartIO.tcAtlasReader()
+        reader.SetFileName(str(path))
+        reader.SetAnimation("" if animation is None else str(animation))
+        run(reader, "read atlas")
+    else:
+        reader = _mesh_reader(path, animation, False)
+        run(reader, "read")
     info = reader.GetOutputInformation(0)
     key = vtkStreamingDemandDrivenPipeline.TIME_STEPS()
     return tuple(info.Get(key)) if info.Has(key) else ()

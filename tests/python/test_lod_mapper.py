@@ -161,6 +161,8 @@ def test_a_skinned_atlas_is_posed_on_the_gpu_per_instance(shared_data, tmp_path)
     atlas = trichart.read_atlas(tmp_path / "snake.exr")
     finest = trichart.rebuild(atlas)
     duration = trichart.time_steps(glb)[-1]
+    # The atlas announces the times of the file it was built from.
+    assert trichart.time_steps(tmp_path / "snake.exr") == trichart.time_steps(glb)
     times = (0.3 * duration, 0.8 * duration)
     mapper, window = scene(atlas)
     seconds = vtkDoubleArray()
