@@ -478,21 +478,6 @@ std::filesystem::file_time_type Stamp(const std::string& path)
   return ec ? std::filesystem::file_time_type() : stamp;
 }
 
-/// The index of the animation `choice` names in `scene` (tc::findAnimation), -1 when it has
-/// none; `error` says why a choice is refused.
-int ChooseAnimation(const tc::Scene& scene, const std::string& choice, std::string& error)
-{
-  try
-  {
-    return tc::findAnimation(scene.animations, choice);
-  }
-  catch (const tc::InputError& e)
-  {
-    error = e.what();
-    return -1;
-  }
-}
-
 /// Sets the time steps and range of every output port; none when `times` is empty.
 void AnnounceTimes(vtkInformationVector* outputs, const std::vector<double>& times)
 {
@@ -651,7 +636,7 @@ int tcMeshReader::RequestInformation(
   if (this->Cache->scene && !this->BindPose)
   {
     std::string error;
-    const int a = ChooseAnimation(*this->Cache->scene, this->Animation, error);
+    const int a = tc::findAnimation(this->Cache->scene->animations, this->Animation, error);
     if (!error.empty())
     {
       vtkErrorMacro("Cannot pose '" << this->FileName << "': " << error << ".");
@@ -693,7 +678,7 @@ int tcMeshReader::RequestData(
   if (cache.scene && !cache.scene->skeleton.empty())
   {
     std::string error;
-    const int a = timed ? ChooseAnimation(*cache.scene, this->Animation, error) : -1;
+    const int a = timed ? tc::findAnimation(cache.scene->animations, this->Animation, error) : -1;
     const tc::Animation* animation = a >= 0 ? &cache.scene->animations[a] : nullptr;
     const std::vector<tc::Matrix4> globals = tc::jointGlobals(cache.scene->skeleton, animation, t);
     if (animation)

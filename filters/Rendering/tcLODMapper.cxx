@@ -680,7 +680,8 @@ void tcLODMapper::UpdatePalettes()
     return;
   }
   std::string error;
-  const int chosen = ChooseAnimation(in.atlas, this->Animation ? this->Animation : "", error);
+  const int chosen =
+    tc::findAnimation(in.atlas.rig.animations, this->Animation ? this->Animation : "", error);
   if (!error.empty() && error != in.warnedAnimation)
   {
     vtkErrorMacro("Animation: " << error << "; the bind pose is drawn.");

@@ -81,19 +81,6 @@ void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
     tc::Progress(), 1);
 }
 
-int ChooseAnimation(const tc::Atlas& atlas, const std::string& choice, std::string& error)
-{
-  try
-  {
-    return tc::findAnimation(atlas.rig.animations, choice);
-  }
-  catch (const tc::InputError& e)
-  {
-    error = e.what();
-    return -1;
-  }
-}
-
 namespace
 {
 /// Widens `bounds` by the point `p` of model coordinates carried by the row-major 4 x 4 `m`.

@@ -58,11 +58,6 @@ void PrepareSkinnedAtlas(const tc::Atlas& atlas, SkinnedAtlas& skinned);
 void PoseInstances(const tc::Atlas& atlas, const std::vector<int>& animations,
   const std::vector<double>& times, SkinnedAtlas& skinned);
 
-/// The animation of `atlas`'s rig that `choice` names (tc::findAnimation: "" the first, a name,
-/// an index as digits), -1 when it has none; `error` gets the message for a choice that names
-/// none of them (the bind pose is used then).
-int ChooseAnimation(const tc::Atlas& atlas, const std::string& choice, std::string& error);
-
 /// Axis-aligned bounds (xmin, xmax, ...) of the posed surface of every instance, each transformed
 /// by its row-major 4 x 4 matrix of `instances`. Exact (the finest samples posed on the CPU, as
 /// tc::drawnBounds bounds an unposed atlas) while instances x samples stays below

@@ -198,6 +198,20 @@ int findAnimation(const std::vector<Animation>& animations, const std::string& c
   throw InputError("there is no animation '" + choice + "'; the animations are " + names);
 }
 
+int findAnimation(
+  const std::vector<Animation>& animations, const std::string& choice, std::string& error)
+{
+  try
+  {
+    return findAnimation(animations, choice);
+  }
+  catch (const InputError& e)
+  {
+    error = e.what();
+    return -1;
+  }
+}
+
 PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend)
 {
   std::array<std::pair<int32_t, double>, 3 * kMaxInfluences> merged{};

@@ -128,6 +128,11 @@ PointSkin blendInfluences(int count, const PointSkin* skins, const double* blend
 /// @throws tc::InputError  for a choice that names none of them (the message lists them all)
 int findAnimation(const std::vector<Animation>& animations, const std::string& choice);
 
+/// findAnimation without the exception, for readers and renderers that report and go on: -1
+/// with `error` (the message that lists the animations) for a choice that names none of them.
+int findAnimation(
+  const std::vector<Animation>& animations, const std::string& choice, std::string& error);
+
 /// A skeleton and its animations: what poses a skinned mesh, and what travels with it from the
 /// reader through the pipeline into the atlas.
 struct Rig
