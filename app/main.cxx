@@ -32,6 +32,7 @@ struct ViewerOptions
   QString GltfPath;
   int Level = -1;
   int Instances = 1;
+  double VerticalScale = 1.0;
   bool Animation = false;
   QString AnimationChoice;
   bool Time = false;
@@ -44,8 +45,9 @@ void AddOptions(QCommandLineParser& parser, const QString& stageList)
   parser.setApplicationDescription("TriChart viewer: inspect every stage of the pipeline.");
   parser.addHelpOption();
   parser.addPositionalArgument("files",
-    "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk; scenes .glb, .gltf, .fbx, .x, .md2) or "
-    "atlas (.exr) files, opened in turn; "
+    "Mesh (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk; scenes .glb, .gltf, .fbx, .x, .md2; "
+    "terrain rasters .tif, .tiff, .asc, .hgt, .dem, .pgm, .png, .bmp) or atlas (.exr) files, "
+    "opened in turn; "
     "the last one that opens stays shown. An atlas shows its reconstruction (or --stage atlas or "
     "lod).",
     "[files...]");
@@ -79,6 +81,8 @@ void AddOptions(QCommandLineParser& parser, const QString& stageList)
     QCommandLineOption("elevation", "Then turn it this many degrees up (-90 to 90).", "deg", "0"));
   parser.addOption(QCommandLineOption(
     "zoom", "Then zoom by this factor (> 1: closer; 0.05 to 20).", "factor", "1"));
+  parser.addOption(QCommandLineOption(
+    "vertical-scale", "A terrain raster: multiply its heights by this (default 1).", "s", "1"));
   parser.addOption(QCommandLineOption("instances",
     "Instances of the lod stage's crowd, on a square grid of the ground (1 to 2500, default 1).",
     "n", "1"));
@@ -196,7 +200,8 @@ bool ReadOptions(const QApplication& app, ViewerOptions& options)
   if (!ReadInteger(
         parser, "level", -1, std::numeric_limits<int>::max(), "an integer >= -1", options.Level) ||
     !ReadInteger(parser, "instances", 1, 2500, "an integer from 1 to 2500", options.Instances) ||
-    !ReadCamera(parser, options.Camera) || !ReadPose(parser, options))
+    !ReadCamera(parser, options.Camera) || !ReadPose(parser, options) ||
+    !ReadReal(parser, "vertical-scale", 1e-4, 1e4, options.VerticalScale))
   {
     return false;
   }
@@ -270,6 +275,7 @@ int main(int argc, char* argv[])
   tcViewerWindow window;
   window.SetReconstructionLevel(options.Level);
   window.SetInstances(options.Instances);
+  window.SetVerticalScale(options.VerticalScale);
   window.SetCameraView(options.Camera);
   if (options.Animation)
   {

@@ -10,6 +10,7 @@
 #include "tcLODMapper.h"
 #include "tcLODView.h"
 #include "tcMeshPreparation.h"
+#include "tcMeshReader.h"
 #include "tcParameterPanel.h"
 #include "tcSpectralClustering.h"
 
@@ -21,9 +22,14 @@
 #include <algorithm>
 #include <array>
 
-tcParameterPanel* tcStagePanels::Preparation(tcMeshPreparation* f, QWidget* parent)
+tcParameterPanel* tcStagePanels::Preparation(
+  tcMeshReader* reader, tcMeshPreparation* f, QWidget* parent)
 {
   auto* panel = new tcParameterPanel(tcParameterPanel::Apply, parent);
+  panel
+    ->AddDouble("VerticalScale", 1e-4, 1e4, 4, 0.1, reader->GetVerticalScale(),
+      [reader](double v) { reader->SetVerticalScale(v); })
+    ->setToolTip("A terrain raster (.tif, .asc, .pgm, ...): its heights times this");
   panel
     ->AddDouble("MergeTolerance", 0.0, 0.1, 5, 0.0001, f->GetMergeTolerance(),
       [f](double v) { f->SetMergeTolerance(v); })

@@ -21,13 +21,16 @@ class tcGeometryImageMesh;
 class tcGeometryImages;
 class tcLODView;
 class tcMeshPreparation;
+class tcMeshReader;
 class tcParameterPanel;
 class tcSpectralClustering;
 
 class tcStagePanels
 {
 public:
-  static tcParameterPanel* Preparation(tcMeshPreparation* filter, QWidget* parent);
+  /// The preparation's rows, after the reader's (a terrain raster's VerticalScale).
+  static tcParameterPanel* Preparation(
+    tcMeshReader* reader, tcMeshPreparation* filter, QWidget* parent);
   static tcParameterPanel* Curvature(tcCurvature* filter, QWidget* parent);
   static tcParameterPanel* Clustering(tcSpectralClustering* filter, QWidget* parent);
   static tcParameterPanel* Refinement(tcFeatureRefinement* filter, QWidget* parent);

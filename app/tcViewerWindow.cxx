@@ -16,6 +16,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileDialog>
@@ -149,11 +150,12 @@ void tcViewerWindow::BuildPanels(QWidget* panel, QVBoxLayout* layout)
   // One page per stage, in stage order.
   tcStagePipeline* p = this->Pipeline.get();
   this->Panels = new QStackedWidget(panel);
-  this->Panels->addWidget(
-    new QLabel("Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files, and the\nsurfaces "
-               "of scene files in their\nrest pose: .glb, .gltf, .fbx, .x\nand .md2.",
-      panel));
-  this->Panels->addWidget(tcStagePanels::Preparation(p->GetPreparation(), this));
+  this->Panels->addWidget(new QLabel(
+    "Reads .ply, .ply.gz, .obj, .stl,\n.off, .vtp and .vtk files, and the\nsurfaces "
+    "of scene files in their\nrest pose: .glb, .gltf, .fbx, .x\nand .md2; terrain rasters "
+    ".tif,\n.asc, .hgt, .dem, .pgm, .png\nand .bmp (VerticalScale: under\nPreparation).",
+    panel));
+  this->Panels->addWidget(tcStagePanels::Preparation(p->GetReader(), p->GetPreparation(), this));
   this->Panels->addWidget(tcStagePanels::Curvature(p->GetCurvature(), this));
   this->Panels->addWidget(tcStagePanels::Clustering(p->GetClustering(), this));
   this->Panels->addWidget(tcStagePanels::Refinement(p->GetRefinement(), this));
@@ -674,6 +676,14 @@ void tcViewerWindow::PrintSummary() const
 void tcViewerWindow::SetReconstructionLevel(int level)
 {
   this->ParameterPanel(tcStage::Reconstruction)->Field<QSpinBox>("Level")->setValue(level);
+}
+
+void tcViewerWindow::SetVerticalScale(double scale)
+{
+  this->ParameterPanel(tcStage::Preparation)
+    ->Field<QDoubleSpinBox>("VerticalScale")
+    ->setValue(scale);
+  this->Pipeline->GetReader()->SetVerticalScale(scale);
 }
 
 void tcViewerWindow::SetInstances(int instances)

@@ -85,6 +85,8 @@ public:
   /// Sets the number of instances of the LOD stage's crowd (1 to 2500); the crowd is framed
   /// anew when the LOD stage is shown.
   void SetInstances(int instances);
+  /// A terrain raster's vertical scale (the reader's VerticalScale, the Prepare panel's row).
+  void SetVerticalScale(double scale);
 
   ///@{
   /// The animation (a name, or an index as digits) and the time in seconds at which the LOD

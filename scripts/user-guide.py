@@ -11,7 +11,7 @@ import xml.etree.ElementTree as ElementTree
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 TARGET = ROOT / "docs" / "parameters.md"
 # Pipeline order; anything else follows by name.
-ORDER = ["tcMeshReader", "tcMeshPreparation", "tcCurvature", "tcSpectralClustering",
+ORDER = ["tcMeshReader", "tcHeightFieldReader", "tcMeshPreparation", "tcCurvature", "tcSpectralClustering",
          "tcFeatureRefinement", "tcBaseComplex", "tcPathTracing", "tcGeometryImages",
          "tcGeometryImageMesh", "tcSurfaceDistance", "tcMeshoptSimplify", "tcAtlasWriter",
          "tcAtlasReader", "tcGLTFWriter", "tcLODRepresentation"]
@@ -41,7 +41,7 @@ def proxies():
     for path in sorted((ROOT / "filters").glob("*/*.xml")):
         for group in ElementTree.parse(path).getroot():
             for proxy in group:
-                if proxy.get("class") and proxy.get("name") == proxy.get("class"):
+                if proxy.get("class"):  # a class may have several proxies (the readers)
                     found[proxy.get("name")] = proxy
     names = [n for n in ORDER if n in found] + sorted(set(found) - set(ORDER))
     return [found[n] for n in names]

@@ -9,6 +9,7 @@
 #include "tc/common/array_names.h"
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"
+#include "tc/io/height_field_io.h"
 #include "tc/io/off_io.h"
 #include "tc/io/scene_io.h"
 #include "tc/io/sequence_io.h"
@@ -18,6 +19,7 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkGenericDataObjectReader.h>
@@ -70,7 +72,7 @@ std::string FormatOf(const std::string& fileName)
       return ext;
     }
   }
-  if (tc::isSceneFile(name))
+  if (tc::isSceneFile(name) || tc::isHeightFieldFile(name))
   {
     return name.substr(name.rfind('.') + 1);
   }
@@ -319,6 +321,65 @@ ReadResult ReadSequence(const std::string& path, const tc::Progress& progress, b
   return read;
 }
 
+/// The field arrays GeoOrigin (the first cell's centre in the file's coordinates) and GeoCRS
+/// (its coordinate system, when the file has one) of a height field's mesh.
+void AddGeoreference(const tc::HeightField& field, vtkPolyData* mesh)
+{
+  vtkNew<vtkDoubleArray> origin;
+  origin->SetName(tc::kGeoOrigin);
+  origin->SetNumberOfComponents(2);
+  origin->InsertNextTuple(field.origin.data());
+  mesh->GetFieldData()->AddArray(origin);
+  if (!field.crs.empty())
+  {
+    tcvtk::SetTextField(mesh->GetFieldData(), tc::kGeoCRS, field.crs);
+  }
+}
+
+/// A raster of heights (tc::readHeightField) as a terrain grid with the point array Elevation.
+ReadResult ReadHeightField(
+  const std::string& path, double verticalScale, const tc::Progress& progress)
+{
+  ReadResult read;
+  try
+  {
+    const tc::HeightField field = tc::readHeightField(path, progress.sub(0.0, 0.6));
+    tc::HeightFieldOptions options;
+    options.verticalScale = verticalScale;
+    const tc::HeightFieldMesh grid =
+      tc::triangulateHeightField(field, options, progress.sub(0.6, 1.0));
+    read.mesh = vtkSmartPointer<vtkPolyData>::New();
+    tcvtk::FromTriMesh(grid.mesh, read.mesh);
+    vtkNew<vtkFloatArray> elevation;
+    elevation->SetName(tc::kElevation);
+    elevation->SetNumberOfTuples(grid.mesh.numPoints());
+    std::copy(grid.heights.begin(), grid.heights.end(), elevation->GetPointer(0));
+    read.mesh->GetPointData()->AddArray(elevation);
+    AddGeoreference(field, read.mesh);
+    std::ostringstream facts;
+    facts << "height field of " << field.columns << " x " << field.rows << " cells";
+    facts << (grid.noDataCells > 0
+        ? ", " + Count(grid.noDataCells, "cell", "cells") + " without data left out as holes"
+        : std::string());
+    read.sceneReport = facts.str() + "\n";
+    read.notes = field.notes;
+    if (verticalScale != 1.0)
+    {
+      read.notes.push_back("heights times " + Seconds(verticalScale) + " (VerticalScale); " +
+        tc::kElevation + " holds them as read");
+    }
+  }
+  catch (const tc::Aborted&)
+  {
+    read.aborted = true;
+  }
+  catch (const std::exception& e)
+  {
+    read.error = e.what();
+  }
+  return read;
+}
+
 /// True for the formats the core reads: OFF, PLY (also gzip-compressed) and OBJ.
 bool IsCoreFormat(const std::string& format)
 {
@@ -466,6 +527,7 @@ public:
   std::optional<tc::Scene> scene;
   std::optional<tc::DeformingSequence> sequence;
   bool proxyBones = false;
+  double verticalScale = 1.0;
 };
 
 namespace
@@ -543,7 +605,7 @@ const char* tcMeshReader::GetSupportedExtensions()
     {
       list += std::string(ext) + " ";
     }
-    return list + tc::sceneExtensions();
+    return list + tc::sceneExtensions() + " " + tc::heightFieldExtensions();
   }();
   return extensions.c_str();
 }
@@ -571,7 +633,8 @@ bool tcMeshReader::Load()
   }
   const bool sequence = tc::isSequencePath(this->FileName);
   if (this->Cache && this->Cache->fileName == this->FileName &&
-    this->Cache->stamp == Stamp(this->FileName) && this->Cache->proxyBones == this->ProxyBones)
+    this->Cache->stamp == Stamp(this->FileName) && this->Cache->proxyBones == this->ProxyBones &&
+    this->Cache->verticalScale == this->VerticalScale)
   {
     return true;
   }
@@ -587,7 +650,8 @@ bool tcMeshReader::Load()
   {
     vtkErrorMacro("Cannot read '" << this->FileName << "': unknown extension; TriChart reads "
                                   << MeshExtensionList() << " meshes, the scene formats "
-                                  << tc::sceneExtensions()
+                                  << tc::sceneExtensions() << ", the height fields "
+                                  << tc::heightFieldExtensions()
                                   << ", and sequences (a folder of frames, a pattern with * or ?, "
                                      "or .md2).");
     return false;
@@ -598,8 +662,10 @@ bool tcMeshReader::Load()
   const tc::Progress progress = tcvtk::MakeProgress(this);
   cache->rest = sequence ? ReadSequence(this->FileName, progress, this->ProxyBones, cache->sequence)
     : tc::isSceneFile(this->FileName) ? ReadScene(this->FileName, progress, cache->scene)
-    : IsCoreFormat(format)            ? ReadWithCore(this->FileName, format)
-                                      : ReadWithVTK(this->FileName, format);
+    : tc::isHeightFieldFile(this->FileName)
+    ? ReadHeightField(this->FileName, this->VerticalScale, progress)
+    : IsCoreFormat(format) ? ReadWithCore(this->FileName, format)
+                           : ReadWithVTK(this->FileName, format);
   const ReadResult& read = cache->rest;
   if (read.aborted)
   {
@@ -611,16 +677,20 @@ bool tcMeshReader::Load()
     read.mesh ? read.mesh->GetNumberOfPolys() + read.mesh->GetNumberOfStrips() : 0;
   if (!read.error.empty() || polygons == 0)
   {
-    vtkErrorMacro("Cannot read '" << this->FileName << "' as " << format << ": "
-                                  << (read.error.empty() ? "no polygons found" : read.error)
-                                  << ". Check that the file is a complete " << format
-                                  << (sequence ? " of frames." : " surface mesh."));
+    vtkErrorMacro(
+      "Cannot read '" << this->FileName << "' as " << format << ": "
+                      << (read.error.empty() ? "no polygons found" : read.error)
+                      << ". Check that the file is a complete " << format
+                      << (sequence                                   ? " of frames."
+                             : tc::isHeightFieldFile(this->FileName) ? " raster of heights."
+                                                                     : " surface mesh."));
     return false;
   }
   cache->fileName = this->FileName;
   cache->stamp = Stamp(this->FileName);
   cache->format = format;
   cache->proxyBones = this->ProxyBones;
+  cache->verticalScale = this->VerticalScale;
   this->Cache = std::move(cache);
   return true;
 }
@@ -727,5 +797,6 @@ void tcMeshReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Animation: " << this->Animation << "\n";
   os << indent << "BindPose: " << this->BindPose << "\n";
   os << indent << "ProxyBones: " << this->ProxyBones << "\n";
+  os << indent << "VerticalScale: " << this->VerticalScale << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

@@ -41,6 +41,14 @@
  *   at time k; a time request returns the frame at the largest time not after it. With
  *   ProxyBones, frame 0 also carries a linear blend skin fitted to the frames.
  *
+ * A raster of heights (tc::readHeightField through GDAL: GeoTIFF .tif/.tiff, ESRI ASCII grid
+ * .asc, SRTM .hgt, USGS .dem, PGM/PNG/BMP height maps) is read as a terrain: a regular grid of
+ * two triangles per square of cells with data (no-data cells are holes), in metres relative to
+ * the first cell's centre, heights times VerticalScale, with the point array "Elevation" (the
+ * height read) and the field arrays "GeoOrigin" (that centre in the file's coordinates, double)
+ * and "GeoCRS" (the file's coordinate system as WKT, when it has one). Spacing comes from the
+ * file's geotransform or a JSON side file; degrees are converted to metres.
+ *
  * What was read (format, points, polygons, texture coordinates, vertex colours, "texture NAME
  * WxH", arrays, warnings) is in GetReport() and in the field array "ReaderReport". A missing
  * file, an unknown extension or a file that holds no polygons is an error that names the file
@@ -50,6 +58,8 @@
 #define tcMeshReader_h
 
 #include "TriChartIOModule.h"
+
+#include "tc/io/height_field_io.h" // for the default of VerticalScale
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -96,6 +106,12 @@ public:
   vtkBooleanMacro(ProxyBones, bool);
   ///@}
 
+  ///@{
+  /// Heights of a height field (a terrain raster) are multiplied by this: vertical
+  /// exaggeration, or a unit conversion. > 0; 1 by default.
+  vtkSetMacro(VerticalScale, double);
+  vtkGetMacro(VerticalScale, double);
+  ///@}
   /// The animations of the file last read (after UpdateInformation), in the file's order.
   int GetNumberOfAnimations() const;
   const char* GetAnimationName(int index) const;
@@ -128,6 +144,7 @@ private:
   std::string Animation;
   bool BindPose = false;
   bool ProxyBones = true;
+  double VerticalScale = tc::HeightFieldOptions{}.verticalScale;
   std::string Report;
   std::unique_ptr<tcMeshReaderCache> Cache;
 };

@@ -101,7 +101,19 @@ def _build_options(args):
                                  "stretch_iterations": args.stretch_iterations,
                                  "fit_samples": not args.no_fit,
                                  "keep_appearance": not args.no_appearance},
-            "prepare_options": _repair_options(args)}
+            "prepare_options": _repair_options(args),
+            "read_options": _read_options(args)}
+
+
+def _read_options(args):
+    """read_mesh's options from the command line (a terrain raster's vertical scale)."""
+    return {"vertical_scale": args.vertical_scale}
+
+
+def _add_read_options(parser):
+    parser.add_argument("--vertical-scale", type=float, default=1.0, metavar="S",
+                        help="a terrain raster (.tif, .asc, .pgm, ...): multiply its heights "
+                             "by S (default 1)")
 
 
 def _scene_lines(mesh):
@@ -287,7 +299,7 @@ def _eval_figures(args):
     """Every level's counts and errors against the prepared mesh, and a mismatch warning."""
     from .pipeline import prepare, read_atlas, read_mesh, rebuild, simplify_qem, surface_distance
 
-    reference, _ = prepare(read_mesh(args.mesh))
+    reference, _ = prepare(read_mesh(args.mesh, **_read_options(args)))
     atlas = read_atlas(args.atlas)
     figures = {"atlas": str(args.atlas), "mesh": str(args.mesh),
                "triangles": reference.GetNumberOfPolys(), "levels": [], "warning": ""}
@@ -431,7 +443,8 @@ def cmd_prepare(args):
     from .pipeline import check_mesh_file_name, prepare, read_mesh, write_mesh
 
     check_mesh_file_name(args.output)
-    clean, report = prepare(read_mesh(args.mesh), merge_tolerance=args.merge_tolerance,
+    clean, report = prepare(read_mesh(args.mesh, **_read_options(args)),
+                            merge_tolerance=args.merge_tolerance,
                             **_repair_options(args))
     print(report.strip() or "nothing to change")
     print(f"wrote {write_mesh(clean, args.output)}")
@@ -487,9 +500,11 @@ def _add_repair_options(parser, d):
 
 def _add_build_parser(sub, d):
     p = sub.add_parser("build", help="run the whole static pipeline and write the atlas")
-    p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), or a "
+    p.add_argument("mesh", help="mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), a "
                                 "scene (.glb, .gltf, .fbx, .x, .md2) whose "
-                                "surfaces are read in their rest pose")
+                                "surfaces are read in their rest pose, or a terrain raster "
+                                "(.tif, .tiff, .asc, .hgt, .dem, .pgm, .png, .bmp)")
+    _add_read_options(p)
     p.add_argument("-o", "--output", required=True, help="atlas file to write (.exr)")
     p.add_argument("--stages", metavar="DIR",
                    help="also write every stage as VTP (and pictures) into this folder")
@@ -629,12 +644,14 @@ def _parser(d):
                         "over the animation, against the mesh posed alike")
     p.add_argument("--animation", default="", help="with --frames: the animation (name or "
                                                    "index; default the first)")
+    _add_read_options(p)
     p = sub.add_parser("prepare", help="clean a mesh and write it")
     p.add_argument("mesh")
     p.add_argument("-o", "--output", required=True,
                    help="output mesh, in the format its extension names: " + formats)
     p.add_argument("--merge-tolerance", type=float, default=d.preparation.GetMergeTolerance(),
                    help="merge points closer than this fraction of the diagonal")
+    _add_read_options(p)
     _add_repair_options(p, d)
     return parser
 
@@ -681,6 +698,8 @@ def _check_args(parser, args, d):
             if not low <= getattr(args, name) <= high:
                 parser.error(f"--{name.replace('_', '-')} must be {low:g} .. {high:g}, not "
                              f"{getattr(args, name)}")
+    if args.command in ("build", "prepare", "eval") and not args.vertical_scale > 0:
+        parser.error(f"--vertical-scale must be above 0, not {args.vertical_scale}")
     if args.command in ("build", "prepare") and (args.max_hole_edges < 0 or
                                                  0 < args.max_hole_edges < 3):
         parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "

@@ -202,9 +202,10 @@ def _output(algorithm, port=0):
     return copy
 
 
-def _mesh_reader(path, animation, bind_pose, proxy_bones=True):
+def _mesh_reader(path, animation, bind_pose, proxy_bones=True, vertical_scale=1.0):
     reader = TriChartIO.tcMeshReader()
     reader.SetFileName(str(path))
+    reader.SetVerticalScale(float(vertical_scale))
     reader.SetAnimation("" if animation is None else str(animation))
     reader.SetBindPose(bool(bind_pose))
     reader.SetProxyBones(bool(proxy_bones))
@@ -224,16 +225,18 @@ def _run_at(reader, time, label, progress):
 
 
 def read_mesh(path, progress=None, time=None, animation=None, bind_pose=False,
-              proxy_bones=True):
+              proxy_bones=True, vertical_scale=1.0):
     """Read a mesh file (.ply, .ply.gz, .obj, .stl, .off, .vtp, .vtk), the surfaces of a
-    scene file (.glb, .gltf, .fbx, .x, .md2), or a deforming sequence (a folder of frames, a
-    pattern such as 'frames/f_*.obj', or an MD2 file's keyframes) into a vtkPolyData.
+    scene file (.glb, .gltf, .fbx, .x, .md2), a deforming sequence (a folder of frames, a
+    pattern such as 'frames/f_*.obj', or an MD2 file's keyframes), or a terrain raster
+    through GDAL (.tif, .tiff, .asc, .hgt, .dem, .pgm, .png, .bmp: a grid in metres with the
+    point array Elevation, heights times vertical_scale) into a vtkPolyData.
 
     Without `time`, the rest pose (a sequence's first frame); with it (seconds), the scene
     posed by `animation` (its name or index; the first by default) or the sequence's frame
     at that time. bind_pose=True reads the rest pose and announces no time steps.
     proxy_bones=False reads a sequence without fitting proxy bones (no skin)."""
-    reader = _mesh_reader(path, animation, bind_pose, proxy_bones)
+    reader = _mesh_reader(path, animation, bind_pose, proxy_bones, vertical_scale)
     _run_at(reader, time, "read", progress)
     return _output(reader)
 
@@ -649,7 +652,7 @@ def _write_stages(folder, outputs, image):
     return files
 
 
-def _read_within(path, progress, timed, max_memory, options):
+def _read_within(path, progress, timed, max_memory, options, read_options):
     """read_mesh(path), refused (ResourceError) before the read when the counts the file
     declares already need more than max_memory, and after it for those read; returns (the
     mesh, the estimate of its build)."""
@@ -659,7 +662,7 @@ def _read_within(path, progress, timed, max_memory, options):
         points = counts[0] if counts[0] >= 0 else counts[1] // 2
         _check_memory(points, counts[1], max_memory, f"'{path}' declares",
                       options)
-    mesh = timed("read", read_mesh, path, progress)
+    mesh = timed("read", read_mesh, path, progress, **read_options)
     polys = mesh.GetPolys()
     triangles = polys.GetNumberOfConnectivityIds() - 2 * polys.GetNumberOfCells()
     estimate = _check_memory(mesh.GetNumberOfPoints(), triangles, max_memory,
@@ -669,7 +672,8 @@ def _read_within(path, progress, timed, max_memory, options):
 
 def build(path, atlas_path, stages=None, progress=None, image=True, curvature_options=None,
           cluster_options=None, feature_options=None, base_options=None,
-          geometry_options=None, prepare_options=None, retry_slivers=True, max_memory=None):
+          geometry_options=None, prepare_options=None, retry_slivers=True, max_memory=None,
+          read_options=None):
     """The static pipeline: read, prepare, curvature, spectral clusters, feature refinement,
     base complex with MAPS, path tracing, geometry images; writes the atlas to `atlas_path`.
 
@@ -687,6 +691,8 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     slivers are what makes the parameterization too thin to trace on scans and CAD meshes.
     The result's "retried" then says so (None otherwise).
 
+    read_options are read_mesh's keyword options (vertical_scale for a terrain raster).
+
     Before the work starts (from the counts the file declares, then again from those read) the
     peak memory is estimated (estimate_memory); ResourceError refuses a build whose estimate
     exceeds max_memory bytes (None: the available memory; 0: no limit). The result's "memory"
@@ -697,7 +703,8 @@ def build(path, atlas_path, stages=None, progress=None, image=True, curvature_op
     start = resident_memory()
     reset_peak_memory()
     mesh, estimate = _read_within(path, progress, timed, max_memory,
-                        (geometry_options, base_options, cluster_options))
+                                  (geometry_options, base_options, cluster_options),
+                                  read_options or {})
     stage_options = {"curvature": curvature_options or {}, "cluster": cluster_options or {},
                      "feature": feature_options or {}, "base": base_options or {}}
     outputs, report, retried = _front_retrying_slivers(mesh, prepare_options, stage_options,

@@ -2,6 +2,7 @@
 and reader -> preparation -> curvature runs with the expected arrays and counts."""
 import os
 import sys
+import tempfile
 
 from paraview import servermanager
 from paraview.simple import LoadPlugin, OutputPort, UpdatePipeline
@@ -17,7 +18,7 @@ from trichart import tcArrayNames  # noqa: E402  (the array names, from the wrap
 for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
              "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex",
              "TriChartPathTracing", "TriChartGeometryImages", "TriChartGeometryImageMesh",
-             "TriChartSurfaceDistance", "TriChartAtlasReader"):
+             "TriChartSurfaceDistance", "TriChartAtlasReader", "TriChartHeightFieldReader"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)
@@ -89,6 +90,20 @@ check(mesh.GetPointData().GetArray(tcArrayNames.Distance()) is not None, "point 
 hausdorff = mesh.GetFieldData().GetArray(tcArrayNames.RelativeHausdorff())
 check(hausdorff is not None and 0 < hausdorff.GetValue(0) < 0.05,
       "level 2 of fandisk is within 5% of the diagonal")
+
+# A terrain raster through the height-field proxy of the same reader, its heights scaled.
+grid = os.path.join(tempfile.mkdtemp(), "ridge.asc")
+with open(grid, "w") as f:
+    f.write("ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 4 2\n3 5 1\n")
+terrain = TriChartHeightFieldReader(FileName=grid, VerticalScale=2.0)  # noqa: F821
+UpdatePipeline(proxy=terrain)
+info = terrain.GetDataInformation(0)
+check(info.GetNumberOfPoints() == 6 and info.GetNumberOfCells() == 4,
+      "a 3 x 2 height field is 6 points and 4 triangles")
+check(tuple(info.GetBounds()[4:]) == (2.0, 10.0), "heights times VerticalScale")
+elevation = info.GetPointDataInformation().GetArrayInformation(tcArrayNames.Elevation())
+check(elevation is not None and tuple(elevation.GetComponentRange(0)) == (1.0, 5.0),
+      "point array Elevation holds the heights read")
 
 print("paraview plugin test:", "FAILED" if failures else "passed")
 sys.exit(1 if failures else 0)

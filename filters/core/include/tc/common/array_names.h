@@ -132,4 +132,11 @@ constexpr const char* kBaseColorTexture = "BaseColorTexture";
 constexpr const char* kBaseColorTextureSize = "BaseColorTextureSize";
 /// field: string, the texture's file name, or "embedded:<k>" for the file's k-th image
 constexpr const char* kBaseColorTextureName = "BaseColorTextureName";
+/// point: float, a height field's height as read (before VerticalScale)
+constexpr const char* kElevation = "Elevation";
+/// field: double, 2 components: a height field's first cell centre in the file's coordinates
+/// (the mesh's origin; its CRS units, or degrees)
+constexpr const char* kGeoOrigin = "GeoOrigin";
+/// field: string, a height field's coordinate system as WKT (absent when the file has none)
+constexpr const char* kGeoCRS = "GeoCRS";
 } // namespace tc
