@@ -36,7 +36,7 @@ from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features, 
                        UntraceableError, ResourceError, estimate_memory, set_max_threads,
                        write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS,
                        base_color_texture, read_skeleton, read_frames, time_steps, animation_names,
-                       pose)
+                       pose, deformation_clustering)
 
 
 def plugin_path():

@@ -288,6 +288,34 @@ def pose(mesh, time, animation=None, progress=None):
     return _output(f)
 
 
+def deformation_clustering(path, progress=None, animation=None, **options):
+    """tcDeformationClustering on the sequence (a folder of frames, a pattern, an MD2 file) or
+    skinned scene at `path`: every frame is read, the faces are clustered by their deformation
+    and a proxy bone is fitted to each cluster (a mesh skinned to a skeleton of its own is
+    grouped by its dominant joints instead). Returns (the first frame with ClusterId,
+    FeatureVertex and the proxy skin, the cluster boundaries as lines, a dict of the fit's
+    per-frame "rms", "max" and "rigid_rms" as fractions of the diagonal; empty lists for a
+    skinned mesh).
+
+    Options are the filter's properties in snake case: number_of_clusters,
+    gradient_sigma_scale, seed, max_influences, iterations."""
+    # The reader's own proxy bones would be fitted and then replaced: leave them out.
+    reader = _mesh_reader(path, animation, False, proxy_bones=False)
+    f = _configure(TriChartSkinning.tcDeformationClustering(), options)
+    f.SetInputConnection(reader.GetOutputPort())
+    run(f, "deformation clusters", progress)
+    clusters = _output(f)
+    fields = clusters.GetFieldData()
+
+    def values(name):
+        array = fields.GetArray(name)
+        return [array.GetValue(k) for k in range(array.GetNumberOfTuples())] if array else []
+
+    fit = {"rms": values(TriChartIO.tcArrayNames.FitRms()), "max": values(TriChartIO.tcArrayNames.FitMax()),
+           "rigid_rms": values(TriChartIO.tcArrayNames.RigidFitRms())}
+    return clusters, _output(f, 1), fit
+
+
 def animation_names(path):
     """The names of a scene file's animations, in the file's order."""
     reader = _mesh_reader(path, None, True)

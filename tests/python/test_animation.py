@@ -272,3 +272,49 @@ def test_skin_lines_make_the_joints_boundaries_feature_lines(shared_data):
     skinned = trichart.refine_features(clusters, skin_lines=True)[1].GetNumberOfCells()
     print(f"snake: {plain} feature lines, {skinned} with the skin's")
     assert skinned > plain
+
+
+def _rigid_frames(tmp_path, count):
+    """A tetrahedron turned about z and moved along x, one OFF frame per step."""
+    import math
+    corners = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
+    for k in range(count):
+        c, s = math.cos(0.3 * k), math.sin(0.3 * k)
+        points = "".join(f"{c * x - s * y + 0.5 * k} {s * x + c * y} {z}\n"
+                         for x, y, z in corners)
+        (tmp_path / f"f_{k}.off").write_text(f"OFF\n4 4 0\n{points}{faces}")
+    return tmp_path
+
+
+def test_deformation_clustering_fits_a_rigid_sequence_exactly(tmp_path, testing_data):
+    clusters, lines, fit = trichart.deformation_clustering(_rigid_frames(tmp_path, 4))
+    assert clusters.GetNumberOfPolys() == 4 and len(fit["rms"]) == 4
+    assert clusters.GetCellData().GetArray(tcArrayNames.ClusterId()).GetRange() == (0.0, 1.0)
+    assert max(fit["rms"]) < 1e-5 and max(fit["max"]) < 1e-5  # one rigid motion per frame
+    assert clusters.GetPointData().GetArray(tcArrayNames.SkinWeights()) is not None
+    assert lines.GetNumberOfCells() > 0
+    with pytest.raises(trichart.TriChartError, match="needs a sequence of several frames"):
+        trichart.deformation_clustering(testing_data / "meshes" / "bunny_npm.off")
+
+
+def test_deformation_clusters_of_the_shared_sequences_beat_the_rigid_baseline(shared_data):
+    for name in ("snake_closed_21f", "frankie_run_19f"):
+        clusters, lines, fit = trichart.deformation_clustering(shared_data / "sequences" / name)
+        frames = len(fit["rms"])
+        assert frames == len(trichart.time_steps(shared_data / "sequences" / name)) > 10
+        total = (sum(r * r for r in fit["rms"][1:]) / (frames - 1)) ** 0.5
+        rigid = (sum(r * r for r in fit["rigid_rms"][1:]) / (frames - 1)) ** 0.5
+        assert total <= 0.005 and total <= 0.5 * rigid, (name, total, rigid)
+        boundary = clusters.GetPointData().GetArray(tcArrayNames.FeatureVertex())
+        on_lines = {lines.GetPointData().GetArray(tcArrayNames.InputPointId()).GetValue(k)
+                    for k in range(lines.GetNumberOfPoints())}
+        assert {p for p in range(clusters.GetNumberOfPoints()) if boundary.GetValue(p)} == on_lines
+
+
+def test_a_skinned_scene_is_grouped_by_its_dominant_joints(shared_data):
+    fbx = shared_data / "skinned" / "snake_fbx" / "animation_with_skeleton.fbx"
+    clusters, lines, fit = trichart.deformation_clustering(fbx)
+    ids = clusters.GetCellData().GetArray(tcArrayNames.ClusterId())
+    assert len({ids.GetValue(k) for k in range(ids.GetNumberOfTuples())}) > 5
+    assert lines.GetNumberOfCells() > 0 and fit == {"rms": [], "max": [], "rigid_rms": []}

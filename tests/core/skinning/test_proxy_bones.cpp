@@ -8,6 +8,7 @@
 #include "tc/skinning/skin.h"
 
 #include "analytic_meshes.h"
+#include "skin_fixtures.h"
 #include "test_data.h"
 #include "test_progress.h"
 
@@ -292,6 +293,20 @@ TEST(ProxyBones, WeightsAreNonNegativeAtMostFourAndSumToOne)
     EXPECT_EQ(fit2.skin.weights[4 * v + 2], 0.0f);
     EXPECT_EQ(fit2.skin.weights[4 * v + 3], 0.0f);
   }
+}
+
+TEST(ProxyBones, TheirRigIsToldApartFromASkeletonOfTheFile)
+{
+  const BendingCylinder c;
+  const tc::ProxyBonesResult fit = tc::fitProxyBones(c.triangles, c.frames);
+  std::vector<double> times(c.frames.size());
+  for (size_t k = 0; k < times.size(); ++k)
+  {
+    times[k] = double(k);
+  }
+  EXPECT_TRUE(tc::isProxyRig(tc::proxyRig(fit, times, "frames")));
+  EXPECT_FALSE(tc::isProxyRig(tctest::chainRig(0.0, 1.0)));
+  EXPECT_FALSE(tc::isProxyRig(tc::Rig{}));
 }
 
 TEST(ProxyBones, SkinPointsPosesTheFittedFrames)

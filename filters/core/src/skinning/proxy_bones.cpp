@@ -82,7 +82,7 @@ Skeleton proxySkeleton(int32_t numBones)
   skeleton.joints.resize(numBones);
   for (int32_t b = 0; b < numBones; ++b)
   {
-    skeleton.joints[b].name = "proxy " + std::to_string(b);
+    skeleton.joints[b].name = proxyJointName(b);
     skeleton.joints[b].restLocal = identityMatrix();
     skeleton.joints[b].inverseBind = identityMatrix();
   }
@@ -209,6 +209,24 @@ FitError measureFit(
   }
   e.totalRms = std::sqrt(squares / count);
   return e;
+}
+
+std::string proxyJointName(int32_t bone)
+{
+  return "proxy " + std::to_string(bone);
+}
+
+bool isProxyRig(const Rig& rig)
+{
+  const std::vector<Joint>& joints = rig.skeleton.joints;
+  for (size_t b = 0; b < joints.size(); ++b)
+  {
+    if (joints[b].name != proxyJointName(static_cast<int32_t>(b)) || joints[b].parent != -1)
+    {
+      return false;
+    }
+  }
+  return !joints.empty();
 }
 
 Rig proxyRig(const ProxyBonesResult& fit, const std::vector<double>& times, const std::string& name)

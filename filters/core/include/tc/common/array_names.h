@@ -132,6 +132,14 @@ constexpr const char* kBaseColorTexture = "BaseColorTexture";
 constexpr const char* kBaseColorTextureSize = "BaseColorTextureSize";
 /// field: string, the texture's file name, or "embedded:<k>" for the file's k-th image
 constexpr const char* kBaseColorTextureName = "BaseColorTextureName";
+// tcDeformationClustering
+/// field: double, per frame: RMS distance of the proxy-bone skin's frame to the input frame, as
+/// a fraction of the first frame's diagonal
+constexpr const char* kFitRms = "FitRms";
+/// field: double, per frame: the largest such distance, a fraction of the diagonal
+constexpr const char* kFitMax = "FitMax";
+/// field: double, per frame: RMS distance with each point bound to its own cluster's bone alone
+constexpr const char* kRigidFitRms = "RigidFitRms";
 /// point: float, a height field's height as read (before VerticalScale)
 constexpr const char* kElevation = "Elevation";
 /// field: double, 2 components: a height field's first cell centre in the file's coordinates

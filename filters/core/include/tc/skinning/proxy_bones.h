@@ -13,6 +13,7 @@
 #include "tc/skinning/skin.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tc
@@ -111,6 +112,13 @@ ProxyBonesResult fitProxyBones(const DeformingSequence& sequence,
 /// @throws InputError  when `times` has not one time per fitted frame or is not ascending
 Rig proxyRig(
   const ProxyBonesResult& fit, const std::vector<double>& times, const std::string& name);
+
+/// The name of proxy bone `bone`: "proxy <bone>".
+std::string proxyJointName(int32_t bone);
+
+/// True if `rig`'s skeleton is one fitProxyBones() made (root joints named by proxyJointName()):
+/// fitted to frames, not a skeleton the file had.
+bool isProxyRig(const Rig& rig);
 
 /// The distances between `fitted` frames and the input `frames`, per frame.
 /// @param[in] fitted  #K x (#V x 3)
