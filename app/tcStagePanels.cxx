@@ -44,6 +44,19 @@ tcParameterPanel* tcStagePanels::Preparation(
   maxHoleEdges->setToolTip("The largest hole FillHoles closes, in boundary edges");
   panel->AddCheck("RemoveSlivers", f->GetRemoveSlivers(), [f](bool on) { f->SetRemoveSlivers(on); })
     ->setToolTip("Collapse needles and flip caps (a scan's slivers)");
+  panel
+    ->AddCheck(
+      "DropNonOrientable", f->GetDropNonOrientable(), [f](bool on) { f->SetDropNonOrientable(on); })
+    ->setToolTip("Drop the components that cannot be oriented (Moebius-like)");
+  QSpinBox* minTriangles = panel->AddInt("MinComponentTriangles", 0, 100000000,
+    static_cast<int>(f->GetMinComponentTriangles()),
+    [f](int v) { f->SetMinComponentTriangles(v); });
+  minTriangles->setSpecialValueText("keep all"); // 0
+  minTriangles->setToolTip("Drop the components of fewer triangles (a scan's stray islands)");
+  panel
+    ->AddCheck("KeepLargestComponent", f->GetKeepLargestComponent(),
+      [f](bool on) { f->SetKeepLargestComponent(on); })
+    ->setToolTip("Keep only the component of the most triangles");
   return panel;
 }
 

@@ -187,6 +187,7 @@ void tcMeshPreparation::ClearReport()
   this->Changed = false;
   this->NonManifoldEdges = this->NonManifoldVertices = this->BoundaryEdges = 0;
   this->OpenHoles = this->NonOrientableComponents = 0;
+  this->DroppedComponents = this->DroppedComponentTriangles = 0;
   this->ClosedManifold = false;
   this->ClosedManifoldRepairs.clear();
 }
@@ -199,6 +200,10 @@ void tcMeshPreparation::RecordReport(
   this->BoundaryEdges = counts.boundaryEdges;
   this->OpenHoles = counts.openHoles;
   this->NonOrientableComponents = counts.nonOrientableComponents;
+  this->DroppedComponents =
+    counts.droppedNonOrientable + counts.droppedSmallComponents + counts.droppedMinorComponents;
+  this->DroppedComponentTriangles = counts.droppedNonOrientableTriangles +
+    counts.droppedSmallTriangles + counts.droppedMinorTriangles;
   this->ClosedManifold = tc::closedManifold(counts, options);
   this->ClosedManifoldRepairs = tc::closedManifoldRepairs(counts, options);
   this->Report = counts.text();
@@ -239,6 +244,9 @@ int tcMeshPreparation::RequestData(
   options.removeSlivers = this->RemoveSlivers;
   options.sliverAngle = this->SliverAngle;
   options.sliverEdgeRatio = this->SliverEdgeRatio;
+  options.dropNonOrientable = this->DropNonOrientable;
+  options.minComponentTriangles = this->MinComponentTriangles;
+  options.keepLargestComponent = this->KeepLargestComponent;
   tc::PreparationResult result;
   try
   {
@@ -289,5 +297,8 @@ void tcMeshPreparation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RemoveSlivers: " << this->RemoveSlivers << "\n";
   os << indent << "SliverAngle: " << this->SliverAngle << "\n";
   os << indent << "SliverEdgeRatio: " << this->SliverEdgeRatio << "\n";
+  os << indent << "DropNonOrientable: " << this->DropNonOrientable << "\n";
+  os << indent << "MinComponentTriangles: " << this->MinComponentTriangles << "\n";
+  os << indent << "KeepLargestComponent: " << this->KeepLargestComponent << "\n";
   os << indent << "Report: " << this->Report << "\n";
 }

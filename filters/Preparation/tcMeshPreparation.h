@@ -84,6 +84,22 @@ public:
   vtkGetMacro(SliverEdgeRatio, double);
   ///@}
 
+  ///@{
+  /// Drop edge-connected components, after orienting and before filling holes (all off by
+  /// default: a mesh is never cut unasked). A component is dropped by the first that applies:
+  /// DropNonOrientable drops the Moebius-like ones, which no repair or later stage takes;
+  /// MinComponentTriangles (0: off) those of fewer triangles, a scan's stray islands;
+  /// KeepLargestComponent all but the one of the most triangles. Their points go with them.
+  vtkSetMacro(DropNonOrientable, bool);
+  vtkGetMacro(DropNonOrientable, bool);
+  vtkBooleanMacro(DropNonOrientable, bool);
+  vtkSetClampMacro(MinComponentTriangles, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MinComponentTriangles, vtkIdType);
+  vtkSetMacro(KeepLargestComponent, bool);
+  vtkGetMacro(KeepLargestComponent, bool);
+  vtkBooleanMacro(KeepLargestComponent, bool);
+  ///@}
+
   /// What the last run changed, one item per line.
   const char* GetReport() const { return this->Report.c_str(); }
 
@@ -92,13 +108,16 @@ public:
 
   ///@{
   /// Counts of the last run (also in the report): non-manifold edges and vertices found in the
-  /// input (before splitting), boundary edges of the output, holes FillHoles left open, and
-  /// components left unoriented.
+  /// input (before splitting), boundary edges of the output, holes FillHoles left open,
+  /// components left unoriented, and the components (and their triangles) that
+  /// DropNonOrientable, MinComponentTriangles and KeepLargestComponent dropped.
   vtkIdType GetNonManifoldEdges() const { return this->NonManifoldEdges; }
   vtkIdType GetNonManifoldVertices() const { return this->NonManifoldVertices; }
   vtkIdType GetBoundaryEdges() const { return this->BoundaryEdges; }
   vtkIdType GetOpenHoles() const { return this->OpenHoles; }
   vtkIdType GetNonOrientableComponents() const { return this->NonOrientableComponents; }
+  vtkIdType GetDroppedComponents() const { return this->DroppedComponents; }
+  vtkIdType GetDroppedComponentTriangles() const { return this->DroppedComponentTriangles; }
   ///@}
 
   /// True if the last run's output is what tcBaseComplex and the stages after it need: every
@@ -134,6 +153,9 @@ private:
   bool RemoveSlivers = tc::PreparationOptions{}.removeSlivers;
   double SliverAngle = tc::PreparationOptions{}.sliverAngle;
   double SliverEdgeRatio = tc::PreparationOptions{}.sliverEdgeRatio;
+  bool DropNonOrientable = tc::PreparationOptions{}.dropNonOrientable;
+  vtkIdType MinComponentTriangles = tc::PreparationOptions{}.minComponentTriangles;
+  bool KeepLargestComponent = tc::PreparationOptions{}.keepLargestComponent;
   std::string Report;
   bool Changed = false;
   vtkIdType NonManifoldEdges = 0;
@@ -141,6 +163,8 @@ private:
   vtkIdType BoundaryEdges = 0;
   vtkIdType OpenHoles = 0;
   vtkIdType NonOrientableComponents = 0;
+  vtkIdType DroppedComponents = 0;
+  vtkIdType DroppedComponentTriangles = 0;
   bool ClosedManifold = false;
   std::string ClosedManifoldRepairs;
 };

@@ -454,7 +454,10 @@ def cmd_prepare(args):
 def _repair_options(args):
     """The preparation's repairs from the command line, shared by build and prepare."""
     return {"fill_holes": args.fill_holes, "max_hole_edges": args.max_hole_edges,
-            "split_non_manifold": args.split_non_manifold, "remove_slivers": args.remove_slivers}
+            "split_non_manifold": args.split_non_manifold, "remove_slivers": args.remove_slivers,
+            "drop_non_orientable": args.drop_non_orientable,
+            "min_component_triangles": args.min_component_triangles,
+            "keep_largest_component": args.keep_largest_component}
 
 
 class _Defaults:
@@ -496,6 +499,16 @@ def _add_repair_options(parser, d):
                              f"{prep.GetSliverEdgeRatio():g} times the shortest) in the "
                              "preparation: scans often have thousands, through which the base "
                              "edges cannot be traced")
+    parser.add_argument("--drop-non-orientable", action="store_true",
+                        help="drop the components that cannot be oriented (Moebius-like), "
+                             "which no repair takes")
+    parser.add_argument("--min-component-triangles", type=int, metavar="N",
+                        default=prep.GetMinComponentTriangles(),
+                        help=f"drop the components of fewer than N triangles, a scan's stray "
+                             f"islands (default {prep.GetMinComponentTriangles()}: keep all)")
+    parser.add_argument("--keep-largest-component", action="store_true",
+                        help="keep only the component of the most triangles (a scanned object "
+                             "without the debris around it)")
 
 
 def _add_build_parser(sub, d):
@@ -704,6 +717,9 @@ def _check_args(parser, args, d):
                                                  0 < args.max_hole_edges < 3):
         parser.error(f"--max-hole-edges must be 3 or more (0: any size), not "
                      f"{args.max_hole_edges}")
+    if args.command in ("build", "prepare") and args.min_component_triangles < 0:
+        parser.error(f"--min-component-triangles must be 0 (keep all) or more, not "
+                     f"{args.min_component_triangles}")
 
 
 def _route_vtk_messages():

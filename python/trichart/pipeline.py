@@ -328,7 +328,8 @@ def prepare(mesh, progress=None, **options):
 
     Options are the filter's properties in snake case, its defaults for those not given:
     merge_tolerance, split_non_manifold, orient, fill_holes, max_hole_edges, remove_slivers,
-    sliver_angle, sliver_edge_ratio.
+    sliver_angle, sliver_edge_ratio, drop_non_orientable, min_component_triangles,
+    keep_largest_component.
     """
     f = _prepared(mesh, progress, **options)
     return _output(f), f.GetReport()

@@ -29,7 +29,9 @@ prep = TriChartMeshPreparation(Input=reader)  # noqa: F821
 check(prep.GetXMLName() == "tcMeshPreparation", "proxy name is the class name")
 check(prep.MergeTolerance == 0.0 and prep.Orient == 1 and prep.SplitNonManifold == 0
       and prep.FillHoles == 0 and prep.MaxHoleEdges == 1000 and prep.RemoveSlivers == 0
-      and prep.SliverAngle == 170.0 and prep.SliverEdgeRatio == 10.0,
+      and prep.SliverAngle == 170.0 and prep.SliverEdgeRatio == 10.0
+      and prep.DropNonOrientable == 0 and prep.MinComponentTriangles == 0
+      and prep.KeepLargestComponent == 0,
       "tcMeshPreparation defaults match the C++ defaults")
 curv = TriChartCurvature(Input=prep)  # noqa: F821
 check(curv.MinNeighbors == 20 and curv.Degree == 3 and curv.ComputeCrestLines == 1,

@@ -1,4 +1,5 @@
 """The `trichart` command line (python3 -m trichart)."""
+import math
 import os
 import subprocess
 import sys
@@ -210,6 +211,68 @@ def test_an_open_mesh_is_refused_after_the_preparation_with_the_flag_to_use(test
     # Too small a limit leaves the hole open and names the option that closes it.
     r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--fill-holes", "--max-hole-edges", "2")
     assert r.returncode == 2 and "--max-hole-edges must be 3 or more (0: any size)" in r.stderr
+
+
+def _with_parts(mesh, path, stray_triangle=False, moebius_segments=0):
+    """`mesh` (an OFF file) written to `path` with a stray triangle and a Moebius strip of
+    2 * moebius_segments triangles appended, far from it: components the pipeline cannot take."""
+    lines = [line for line in mesh.read_text().split("\n") if line.strip()]
+    num_points, num_faces = map(int, lines[1].split()[:2])
+    points = lines[2:2 + num_points]
+    faces = lines[2 + num_points:2 + num_points + num_faces]
+    if stray_triangle:
+        n = len(points)
+        points += ["10 0 0", "11 0 0", "10 1 0"]
+        faces.append(f"3 {n} {n + 1} {n + 2}")
+    if moebius_segments:
+        n, segments = len(points), moebius_segments
+        for i in range(segments):
+            t = 2 * math.pi * i / segments
+            h, z = 0.3 * math.cos(t / 2), 0.3 * math.sin(t / 2)
+            for sign in (1, -1):
+                points.append(f"{-10 + math.cos(t) * (1 + sign * h)} "
+                              f"{math.sin(t) * (1 + sign * h)} {sign * z}")
+        for i in range(segments):
+            top, bottom = n + 2 * i, n + 2 * i + 1
+            # The half twist: after the last segment, top and bottom swap.
+            next_top = top + 2 if i + 1 < segments else n + 1
+            next_bottom = top + 3 if i + 1 < segments else n
+            faces += [f"3 {top} {bottom} {next_bottom}", f"3 {top} {next_bottom} {next_top}"]
+    path.write_text("OFF\n" + f"{len(points)} {len(faces)} 0\n" + "\n".join(points + faces) +
+                    "\n")
+    return path
+
+
+def test_build_drops_the_components_the_flags_name(testing_data, tmp_path):
+    # The bundled bunny (3674 triangles, closed) with a stray triangle and a Moebius strip.
+    mesh = _with_parts(testing_data / "meshes" / "bunny_npm.off", tmp_path / "parts.off",
+                       stray_triangle=True, moebius_segments=12)
+    r = run("build", mesh, "-o", tmp_path / "parts.exr", "-q")
+    assert r.returncode == 2
+    assert ("1 non-orientable (Moebius-like) component (24 of the 3699 triangles), which no "
+            "orientation fixes (drop it: DropNonOrientable, trichart build "
+            "--drop-non-orientable" in r.stderr), r.stderr
+    assert ("or keep only the largest component, which is closed and oriented (3674 of the "
+            "3699 triangles): KeepLargestComponent, trichart build --keep-largest-component"
+            in r.stderr), r.stderr
+    # Dropping the strip leaves the stray triangle open: still refused, for its 3 edges.
+    r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--drop-non-orientable")
+    assert r.returncode == 0, r.stderr
+    assert "dropped 1 non-orientable component with 24 triangles (DropNonOrientable)" in r.stdout
+    assert "3 boundary edges" in r.stdout, r.stdout
+    r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--drop-non-orientable",
+            "--min-component-triangles", "2")
+    assert r.returncode == 0, r.stderr
+    assert ("dropped 1 component of fewer triangles than MinComponentTriangles, with 1 "
+            "triangle in all" in r.stdout), r.stdout
+    assert "boundary edges" not in r.stdout and "3674 output triangles" in r.stdout, r.stdout
+    r = run("build", mesh, "-o", tmp_path / "parts.exr", "-q", "--keep-largest-component")
+    assert r.returncode == 0, r.stderr
+    assert ("dropped 2 components other than the largest, with 25 triangles in all "
+            "(KeepLargestComponent)" in r.stdout), r.stdout
+    assert "3674 triangles" in r.stdout and (tmp_path / "parts.exr").stat().st_size > 0
+    r = run("prepare", mesh, "-o", tmp_path / "p.vtp", "--min-component-triangles", "-1")
+    assert r.returncode == 2 and "--min-component-triangles must be 0" in r.stderr, r.stderr
 
 
 def test_build_takes_a_skinned_character_in_its_rest_pose(shared_data, tmp_path):

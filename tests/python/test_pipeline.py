@@ -174,3 +174,52 @@ def test_remove_slivers_collapses_the_needles_of_a_uv_sphere():
     # A looser needle ratio leaves them.
     _, report = trichart.prepare(sphere, remove_slivers=True, sliver_edge_ratio=20.0)
     assert "sliver" not in report
+
+
+def _sphere_and_stray_triangle():
+    """A closed sphere and, far from it, a lone triangle: two components."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkFiltersCore import vtkAppendPolyData
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    sphere = vtkSphereSource()
+    sphere.SetThetaResolution(16)
+    sphere.SetPhiResolution(8)
+    points = vtkPoints()
+    for p in ((5, 0, 0), (6, 0, 0), (5, 1, 0)):
+        points.InsertNextPoint(p)
+    cells = vtkCellArray()
+    cells.InsertNextCell(3, (0, 1, 2))
+    stray = vtkPolyData()
+    stray.SetPoints(points)
+    stray.SetPolys(cells)
+    append = vtkAppendPolyData()
+    append.AddInputConnection(sphere.GetOutputPort())
+    append.AddInputData(stray)
+    append.Update()
+    return append.GetOutput()
+
+
+def test_component_options_drop_the_stray_triangle_and_the_filter_counts_it():
+    mesh = _sphere_and_stray_triangle()
+    plain, report = trichart.prepare(mesh)
+    assert "2 connected components" in report and "3 boundary edges" in report, report
+    sphere_triangles = plain.GetNumberOfPolys() - 1
+    for options in ({"keep_largest_component": True}, {"min_component_triangles": 2}):
+        f = trichart.tcMeshPreparation()
+        f.SetInputData(mesh)
+        for name, value in options.items():
+            getattr(f, "Set" + "".join(w.capitalize() for w in name.split("_")))(value)
+        f.Update()
+        clean = f.GetOutput()
+        assert f.GetDroppedComponents() == 1 and f.GetDroppedComponentTriangles() == 1, options
+        assert f.GetClosedManifold() and f.GetBoundaryEdges() == 0, f.GetReport()
+        assert clean.GetNumberOfPolys() == sphere_triangles
+        # The sphere's triangles keep their input cells, in order; the stray one is gone.
+        cells = clean.GetCellData().GetArray(tcArrayNames.InputCellId())
+        assert [cells.GetValue(i) for i in range(cells.GetNumberOfTuples())] == list(
+            range(sphere_triangles))
+        assert "dropped 3 points with the dropped components" in f.GetReport(), f.GetReport()
+    _, report = trichart.prepare(mesh, keep_largest_component=True)
+    assert ("dropped 1 component other than the largest, with 1 triangle in all "
+            "(KeepLargestComponent)") in report, report

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/prep/mesh_preparation.h"
 
+#include "prep/component_selection.h"
 #include "prep/ear_clipping.h"
 #include "prep/first_equal.h"
 #include "prep/non_manifold.h"
@@ -131,9 +132,14 @@ void validateGeometry(const PolygonSoup& soup)
   }
 }
 
-/// Sliver thresholds in range, when slivers are to be removed.
+/// A component floor of 0 or more; sliver thresholds in range, when slivers are to be removed.
 void validateOptions(const PreparationOptions& options)
 {
+  if (options.minComponentTriangles < 0)
+  {
+    throw InputError("mesh preparation: minComponentTriangles must be 0 (off) or more (got " +
+      std::to_string(options.minComponentTriangles) + ")");
+  }
   if (!options.removeSlivers ||
     (options.sliverAngle >= kMinSliverAngle && options.sliverAngle <= 180.0 &&
       options.sliverEdgeRatio >= kMinSliverEdgeRatio))
@@ -395,14 +401,15 @@ int32_t compact(const Candidates& candidates, const std::vector<uint8_t>& keep, 
 }
 
 // ---------------------------------------------------------------------------------------------
-// 8 - 10. Output points, boundary, repairs
+// 8 - 11. Output points, boundary, repairs
 
-/// The prepared mesh between steps: its edge table and sizes.
+/// The prepared mesh between steps: its edge table, sizes and what its components are.
 struct MeshState
 {
   EdgeTable edges;
   int32_t numVertices = 0;
   int64_t numTriangles = 0;
+  ComponentKinds kinds;
 };
 
 /// The output points: the input point of each (result.inputPointId).
@@ -434,12 +441,19 @@ void markBoundary(const EdgeTable& edges, int32_t numVertices, PreparationResult
   }
 }
 
+/// Components, orientation and boundary over state.edges.
+void settle(bool orient, MeshState& state, PreparationResult& result)
+{
+  state.kinds = orientComponents(orient, state.edges, result);
+  describeComponents(result.componentId, state.kinds, result.report);
+  markBoundary(state.edges, state.numVertices, result);
+}
+
 /// After a repair changed the triangles: edges, components, orientation and boundary again.
 void relink(bool orient, MeshState& state, PreparationResult& result)
 {
   state.edges = buildEdgeTable(result.mesh.triangles);
-  orientComponents(orient, state.edges, result);
-  markBoundary(state.edges, state.numVertices, result);
+  settle(orient, state, result);
 }
 
 /// values[i] = values[kept[i]] for the kept (ascending) entries; the rest dropped.
@@ -499,7 +513,30 @@ Outcome recorded(Outcome outcome, const PreparationOptions& options, Preparation
   return outcome;
 }
 
-/// Step 9: fills the holes (CGAL), then drops the components of fewer than 4 triangles: once
+/// Drops the components whose `keep` is 0 (their points too); the per-element arrays follow.
+void dropComponents(
+  const std::vector<uint8_t>& keep, bool orient, MeshState& state, PreparationResult& result)
+{
+  const ComponentRemoval removal = keepComponents(result.mesh, result.componentId, keep);
+  result.report.droppedComponentPoints += removal.droppedPoints;
+  follow(removal.keptPoints, removal.keptTriangles, orient, state, result);
+}
+
+/// Step 9: drops the components the options name (non-orientable, small, all but the largest).
+void selectAndDropComponents(
+  const PreparationOptions& options, MeshState& state, PreparationResult& result)
+{
+  PreparationReport& report = result.report;
+  const std::vector<uint8_t> keep =
+    selectComponents(result.componentId, state.kinds, options, report);
+  if (report.droppedNonOrientable + report.droppedSmallComponents + report.droppedMinorComponents >
+    0)
+  {
+    dropComponents(keep, options.orient, state, result);
+  }
+}
+
+/// Step 10: fills the holes (CGAL), then drops the components of fewer than 4 triangles: once
 /// filled, no closed surface (a lone triangle becomes a flat two-sided pair, around whose
 /// corners no base complex fits).
 void closeHoles(const PreparationOptions& options, const Progress& progress, MeshState& state,
@@ -522,16 +559,20 @@ void closeHoles(const PreparationOptions& options, const Progress& progress, Mes
       relink(options.orient, state, result);
     }
   }
-  const FragmentRemoval fragments =
-    dropFragments(result.mesh, result.componentId, report.components, 4);
-  report.droppedFragments = fragments.fragments;
-  if (fragments.fragments > 0)
+  const std::vector<int64_t> triangles = componentTriangles(result.componentId, report.components);
+  std::vector<uint8_t> keep(triangles.size(), 1);
+  for (size_t k = 0; k < triangles.size(); ++k)
   {
-    follow(fragments.keptPoints, fragments.keptTriangles, options.orient, state, result);
+    keep[k] = triangles[k] >= 4 ? 1 : 0;
+    report.droppedFragments += 1 - keep[k];
+  }
+  if (report.droppedFragments > 0)
+  {
+    dropComponents(keep, options.orient, state, result);
   }
 }
 
-/// Step 10: removes the slivers (CGAL). Only drops points and triangles and changes corners:
+/// Step 11: removes the slivers (CGAL). Only drops points and triangles and changes corners:
 /// the per-element arrays follow the kept ones.
 void removeSliverTriangles(const PreparationOptions& options, const Progress& progress,
   MeshState& state, PreparationResult& result)
@@ -603,24 +644,27 @@ PreparationResult prepareMesh(
 
   // 8. Output points, components, orientation and boundary.
   copyPoints(soup, state.numVertices, result);
-  orientComponents(options.orient, state.edges, result);
-  markBoundary(state.edges, state.numVertices, result);
+  settle(options.orient, state, result);
   progress.report(0.8);
 
-  // 9. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
+  // 9. Components (opt-in): before the repairs, which refuse a non-orientable component and
+  // would only fill the holes of parts about to be dropped.
+  selectAndDropComponents(options, state, result);
+
+  // 10. Holes (opt-in), on the oriented mesh; then the closed components face outward too.
   if (options.fillHoles)
   {
     closeHoles(options, progress.sub(0.8, 0.9), state, result);
   }
   progress.report(0.9);
 
-  // 10. Slivers (opt-in), last, so that hole patches are repaired too.
+  // 11. Slivers (opt-in), last, so that hole patches are repaired too.
   if (options.removeSlivers)
   {
     removeSliverTriangles(options, progress.sub(0.9, 1.0), state, result);
   }
 
-  // 11. Counts.
+  // 12. Counts.
   report.outputPoints = state.numVertices;
   report.outputTriangles = state.numTriangles;
   progress.report(1.0);

@@ -138,7 +138,7 @@ std::vector<double> signedVolumes(const TriMesh& mesh, const std::vector<int32_t
 }
 } // namespace
 
-void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& result)
+ComponentKinds orientComponents(bool orient, const EdgeTable& edges, PreparationResult& result)
 {
   PreparationReport& report = result.report;
   std::vector<int32_t>& tri = result.mesh.triangles;
@@ -146,7 +146,7 @@ void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& re
   Linked linked = linkFaces(tri, edges);
   const int32_t numComponents = numberComponents(linked.connected, nf, result.componentId);
   report.components = numComponents;
-  const std::vector<uint8_t> closed = closedComponents(edges, result.componentId, numComponents);
+  std::vector<uint8_t> closed = closedComponents(edges, result.componentId, numComponents);
   std::vector<uint8_t> nonOrientable(numComponents, 0);
   const std::vector<uint8_t> flip = patchFlips(linked, result.componentId, nonOrientable);
 
@@ -174,6 +174,7 @@ void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& re
       }
     }
   }
+  return { std::move(closed), std::move(nonOrientable) };
 }
 } // namespace detail
 } // namespace tc

@@ -6,6 +6,9 @@
 #include "tc/common/mesh_topology.h"
 #include "tc/prep/mesh_preparation.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace tc
 {
 namespace detail
@@ -18,10 +21,18 @@ namespace detail
 /// memory in order, and gives the same result (the orientation of an orientable patch relative
 /// to its first face is unique).
 ///
+/// What orientComponents found of each component (numbered as result.componentId).
+struct ComponentKinds
+{
+  std::vector<uint8_t> closed;        ///< 1: no edge of it has other than 2 faces
+  std::vector<uint8_t> nonOrientable; ///< 1: a patch of it cannot be oriented
+};
+
 /// @param[in] orient  flip the faces (else only count and number)
 /// @param[in] edges   edge table of result.mesh.triangles
 /// @param[in,out] result  mesh.triangles flipped; componentId (#F) and the report's
 ///   components, closedComponents, nonOrientableComponents and flippedFaces (added to) set
-void orientComponents(bool orient, const EdgeTable& edges, PreparationResult& result);
+/// @return what each component is
+ComponentKinds orientComponents(bool orient, const EdgeTable& edges, PreparationResult& result);
 } // namespace detail
 } // namespace tc

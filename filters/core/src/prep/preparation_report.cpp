@@ -27,8 +27,10 @@ InputError notManifoldError(const PreparationReport& report, const PreparationOp
   else
   {
     why = counted(report.nonOrientableComponents, kNonOrientableComponent) +
-      " (Moebius-like), which no patch closes consistently; repair the mesh in a mesh "
-      "editor, or leave " +
+      " (Moebius-like), which no patch closes consistently; drop " +
+      (report.nonOrientableComponents == 1 ? "it" : "them") +
+      " (DropNonOrientable, --drop-non-orientable), repair the mesh in a mesh editor, or "
+      "leave " +
       option + " off";
   }
   return InputError(
@@ -69,12 +71,49 @@ std::string boundaryRepair(const PreparationReport& report, const PreparationOpt
     std::to_string(options.maxHoleEdges) +
     " edges with a manifold patch: raise it, 0 for any size, trichart build --max-hole-edges)";
 }
+/// The non-orientable components, their share of the triangles, and the option that drops them
+/// (unless they are most of the mesh, which dropping would not repair but remove).
+std::string nonOrientableRepair(const PreparationReport& report)
+{
+  const int64_t n = report.nonOrientableComponents;
+  const std::string found =
+    counted(n,
+      { "non-orientable (Moebius-like) component", "non-orientable (Moebius-like) components" }) +
+    " (" + std::to_string(report.nonOrientableTriangles) + " of the " +
+    std::to_string(report.outputTriangles) + " triangles), which no orientation fixes ";
+  if (2 * report.nonOrientableTriangles > report.outputTriangles)
+  {
+    return found +
+      "(most of the mesh, which DropNonOrientable would drop: repair the mesh in a "
+      "mesh editor)";
+  }
+  return found + "(drop " + (n == 1 ? "it" : "them") +
+    ": DropNonOrientable, trichart build --drop-non-orientable; or repair the mesh in a mesh "
+    "editor)";
+}
+
+/// When the largest component is closed and oriented and only other components hold the
+/// defects (but for non-manifold vertices, which nonManifoldRepair names): keeping it alone
+/// repairs the mesh, often better than filling the holes of a scan's debris.
+std::string largestComponentRepair(
+  const PreparationReport& report, const PreparationOptions& options)
+{
+  if (options.keepLargestComponent || report.components < 2 || !report.largestComponentClosed)
+  {
+    return {};
+  }
+  return "or keep only the largest component, which is closed and oriented (" +
+    std::to_string(report.largestComponentTriangles) + " of the " +
+    std::to_string(report.outputTriangles) +
+    " triangles): KeepLargestComponent, trichart build --keep-largest-component";
+}
 } // namespace
 
 bool PreparationReport::changed() const
 {
   return polygonsTriangulated > 0 || mergedPoints > 0 || degenerateFaces > 0 ||
     duplicateFaces > 0 || flippedFaces > 0 || unusedPoints > 0 || splitVertices > 0 ||
+    droppedNonOrientable > 0 || droppedSmallComponents > 0 || droppedMinorComponents > 0 ||
     filledHoles > 0 || droppedFragments > 0 || sliverPoints > 0 || reshapedTriangles > 0;
 }
 
@@ -99,10 +138,7 @@ std::string closedManifoldRepairs(
   }
   if (report.nonOrientableComponents > 0)
   {
-    problems.push_back(
-      counted(report.nonOrientableComponents,
-        { "non-orientable (Moebius-like) component", "non-orientable (Moebius-like) components" }) +
-      ", which no orientation fixes (repair it in a mesh editor)");
+    problems.push_back(nonOrientableRepair(report));
   }
   if (report.boundaryEdges > 0)
   {
@@ -111,6 +147,11 @@ std::string closedManifoldRepairs(
   if (!options.orient)
   {
     problems.push_back("orientation unchecked (turn Orient on)");
+  }
+  const std::string largest = largestComponentRepair(report, options);
+  if (!largest.empty() && options.orient)
+  {
+    problems.push_back(largest);
   }
   std::string text;
   for (const std::string& p : problems)
@@ -146,12 +187,23 @@ std::string PreparationReport::text() const
     { splitVertices,
       "added " + counted(splitVertices, { "vertex copy", "vertex copies" }) +
         " to split non-manifold edges and vertices" },
+    { droppedNonOrientable,
+      "dropped " + counted(droppedNonOrientable, kNonOrientableComponent) + " with " +
+        counted(droppedNonOrientableTriangles, kTriangle) + " (DropNonOrientable)" },
+    { droppedSmallComponents,
+      "dropped " + counted(droppedSmallComponents, kComponent) + " of fewer triangles than " +
+        "MinComponentTriangles, with " + counted(droppedSmallTriangles, kTriangle) + " in all" },
+    { droppedMinorComponents,
+      "dropped " + counted(droppedMinorComponents, kComponent) + " other than the largest, with " +
+        counted(droppedMinorTriangles, kTriangle) + " in all (KeepLargestComponent)" },
     { filledHoles,
       "filled " + counted(filledHoles, kHole) + " with " + counted(holeTriangles, kTriangle) +
         " and " + counted(holePoints, kPoint) },
     { droppedFragments,
       "dropped " + counted(droppedFragments, { "fragment", "fragments" }) +
         " of fewer than 4 triangles, which no hole filling closes into a surface" },
+    { droppedComponentPoints,
+      "dropped " + counted(droppedComponentPoints, kPoint) + " with the dropped components" },
     { unfairedHoles,
       counted(unfairedHoles, { "filled hole", "filled holes" }) + " left unfaired (flat patch)" },
     { openHoles,
@@ -167,7 +219,8 @@ std::string PreparationReport::text() const
     { components, counted(components, { "connected component", "connected components" }) },
     { closedComponents, counted(closedComponents, { "closed component", "closed components" }) },
     { nonOrientableComponents,
-      counted(nonOrientableComponents, kNonOrientableComponent) + " (left unoriented)" },
+      counted(nonOrientableComponents, kNonOrientableComponent) + " with " +
+        counted(nonOrientableTriangles, kTriangle) + " (left unoriented)" },
     { outputPoints, counted(outputPoints, { "output point", "output points" }) },
     { outputTriangles, counted(outputTriangles, { "output triangle", "output triangles" }) },
   };

@@ -29,6 +29,7 @@ constexpr Noun kDegenerateFace{ "degenerate face", "degenerate faces" };
 constexpr Noun kNonManifoldEdge{ "non-manifold edge", "non-manifold edges" };
 constexpr Noun kNonManifoldVertex{ "non-manifold vertex", "non-manifold vertices" };
 constexpr Noun kNonOrientableComponent{ "non-orientable component", "non-orientable components" };
+constexpr Noun kComponent{ "component", "components" };
 constexpr Noun kBoundaryEdge{ "boundary edge", "boundary edges" };
 constexpr Noun kHole{ "hole", "holes" };
 constexpr Noun kPoint{ "point", "points" };

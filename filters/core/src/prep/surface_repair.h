@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file surface_repair.h
 /// Repairs of an oriented manifold triangle mesh for tcMeshPreparation (internal): hole filling
-/// (CGAL's triangulate_refine_and_fair_hole), dropping fragments too small to be closed, and
-/// sliver removal (CGAL's remove_almost_degenerate_faces).
+/// (CGAL's triangulate_refine_and_fair_hole) and sliver removal (CGAL's
+/// remove_almost_degenerate_faces).
 #pragma once
 
 #include "tc/common/mesh.h"
@@ -61,19 +61,4 @@ struct SliverRemoval
 /// @param[in] maxEdgeRatio     needles: longest side over shortest above this
 SliverRemoval removeSlivers(
   TriMesh& mesh, double maxAngleDegrees, double maxEdgeRatio, const Progress& progress = {});
-struct FragmentRemoval
-{
-  std::vector<int32_t> keptPoints;    ///< #V' old index of every point kept, ascending
-  std::vector<int32_t> keptTriangles; ///< #F' old index of every triangle kept, ascending
-  int64_t fragments = 0;              ///< components dropped; 0: the mesh was left as it is
-};
-
-/// Drops the components of fewer than `minTriangles` triangles and the points only they use;
-/// the rest keep their order. (Used after hole filling: a lone triangle closed is a flat
-/// two-sided pair, no surface.)
-///
-/// @param[in,out] mesh  #V points, #F triangles
-/// @param[in] componentId  #F component of every triangle, 0 .. numComponents - 1
-FragmentRemoval dropFragments(TriMesh& mesh, const std::vector<int32_t>& componentId,
-  int64_t numComponents, int64_t minTriangles);
 } // namespace tc

@@ -42,6 +42,24 @@ struct PreparationOptions
   bool removeSlivers = false;
   double sliverAngle = 170.0;    ///< degrees, 120 .. 180: a larger angle makes a cap
   double sliverEdgeRatio = 10.0; ///< >= 3: a larger ratio of longest to shortest side, a needle
+
+  // Dropping components (edge-connected, across every shared edge), after orientation and
+  // before hole filling, so that no hole of a dropped part is filled and every count is of the
+  // input's triangles. Off by default: a user's mesh is never cut silently. A component is
+  // counted under the first rule that drops it, in this order.
+
+  /// Drop the components that cannot be oriented (Moebius-like), which no later repair
+  /// accepts; what is left may then be filled and cleaned.
+  bool dropNonOrientable = false;
+  /// Drop the components of fewer triangles than this (0: off): a scan's stray islands. An
+  /// absolute count rather than a fraction of the largest component: what a component needs in
+  /// the later stages (a base complex of a few faces, charts with samples) is a number of
+  /// triangles, whatever the size of its neighbours, and the case a fraction would serve (one
+  /// body and debris) is keepLargestComponent's.
+  int64_t minComponentTriangles = 0;
+  /// Keep only the component of the most triangles (the first of equal ones): a scanned object
+  /// and the debris around it.
+  bool keepLargestComponent = false;
 };
 
 /// Smallest sliverAngle and sliverEdgeRatio: below them ordinary triangles count as slivers.
@@ -50,7 +68,7 @@ constexpr double kMinSliverEdgeRatio = 3.0;
 
 /// What tcMeshPreparation found and changed. Counts of removed things refer to the stage in
 /// which they were removed: inputPoints = mergedPoints + unusedPoints + (outputPoints -
-/// splitVertices - holePoints + sliverPoints).
+/// splitVertices - holePoints + sliverPoints + droppedComponentPoints).
 struct PreparationReport
 {
   int64_t inputPoints = 0;
@@ -85,8 +103,25 @@ struct PreparationReport
   int64_t outputPoints = 0;
   int64_t outputTriangles = 0;
 
+  // Components dropped by the options, each under the first rule that dropped it.
+  int64_t droppedNonOrientable = 0; ///< with dropNonOrientable: components
+  int64_t droppedNonOrientableTriangles = 0;
+  int64_t droppedSmallComponents = 0; ///< with minComponentTriangles: components
+  int64_t droppedSmallTriangles = 0;
+  int64_t droppedMinorComponents = 0; ///< with keepLargestComponent: the other components
+  int64_t droppedMinorTriangles = 0;
+  int64_t droppedComponentPoints = 0; ///< points only these (and droppedFragments) used
+
+  int64_t nonOrientableTriangles = 0; ///< triangles of the nonOrientableComponents
+  /// The output's largest component (the first of equal ones): its triangles, and whether it
+  /// is closed (no boundary or non-manifold edge) and oriented, so that keepLargestComponent
+  /// would leave a closed, oriented mesh (but for non-manifold vertices).
+  int64_t largestComponentTriangles = 0;
+  bool largestComponentClosed = false;
+
   /// True if the output geometry or connectivity differs from the input: polygons
-  /// triangulated, points merged or dropped, faces dropped or flipped, or vertices split.
+  /// triangulated, points merged or dropped, faces or components dropped or flipped, or
+  /// vertices split.
   bool changed() const;
   /// Multi-line summary, one line per non-zero item, e.g. "merged 12 duplicate points".
   std::string text() const;
@@ -118,23 +153,26 @@ bool closedManifold(const PreparationReport& report, const PreparationOptions& o
 /// and the option that repairs it (property and `trichart build` flag), joined by "; ", e.g.
 /// "3 boundary edges (close the holes: FillHoles, trichart build --fill-holes)"; "" when
 /// closedManifold() holds. Every face (CLI, Python, viewer) shows this text.
-std::string closedManifoldRepairs(const PreparationReport& report, const PreparationOptions& options);
+std::string closedManifoldRepairs(
+  const PreparationReport& report, const PreparationOptions& options);
 
 /// Cleans a polygon soup into a triangle mesh, in this order: (1) validate; (2) merge duplicate
 /// points; (3) triangulate polygons (ear clipping in the plane of the Newell normal) and drop
 /// degenerate triangles; (4) drop duplicate triangles; (5) drop unused points; (6) find
-/// non-manifold edges and vertices and (7) split them if asked; (8) orient; (9) fill holes (if
-/// asked) and orient again; (10) remove slivers (if asked); (11) count boundary edges and
+/// non-manifold edges and vertices and (7) split them if asked; (8) orient; (9) drop
+/// components (non-orientable, small, all but the largest: if asked); (10) fill holes (if
+/// asked) and orient again; (11) remove slivers (if asked); (12) count boundary edges and
 /// components. Output points keep the input order (split copies, then hole-filling points are
-/// appended); output triangles keep the polygon order (hole-filling triangles appended; sliver
-/// removal only drops points and triangles). Deterministic.
+/// appended); output triangles keep the polygon order (hole-filling triangles appended;
+/// dropping components and removing slivers only drop points and triangles). Deterministic.
 ///
 /// @param[in] soup      #V points, #P polygons with ids in [0, #V)
 /// @param[in] options   see PreparationOptions
 /// @param[in] progress  reported a few times; may abort (tc::Aborted)
 /// @throws tc::InputError  no points, no polygons, malformed offsets, a polygon id out of range,
-///   NaN/Inf coordinates (names the first such point and the count), zero total area, or no
-///   triangle with non-zero area left after cleaning; more than 2^31 - 1 output points or
+///   NaN/Inf coordinates (names the first such point and the count), zero total area, no
+///   triangle with non-zero area left after cleaning, or no component left after dropping
+///   components (says which rule dropped how many); more than 2^31 - 1 output points or
 ///   triangles
 PreparationResult prepareMesh(
   const PolygonSoup& soup, const PreparationOptions& options = {}, const Progress& progress = {});
