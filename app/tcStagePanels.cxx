@@ -120,6 +120,9 @@ tcParameterPanel* tcStagePanels::Refinement(tcFeatureRefinement* f, QWidget* par
   panel->AddCheck("SeamLines", f->GetSeamLines(), [f](bool on) { f->SetSeamLines(on); })
     ->setToolTip("Texture seams of the input join the feature lines, so that every chart lies on "
                  "one side of a seam and keeps its own texture coordinates");
+  panel->AddCheck("SkinLines", f->GetSkinLines(), [f](bool on) { f->SetSkinLines(on); })
+    ->setToolTip("A skinned mesh: the boundaries between the faces that different joints "
+                 "dominate join the feature lines, so that no chart straddles two bones");
   return panel;
 }
 

@@ -4,7 +4,7 @@
 #
 #   bash bench/fuzz.sh [SECONDS_PER_TARGET (default 60)] [TARGET...]
 #
-# The core's readers (off ply ply_gz obj scene atlas) are libFuzzer targets of the sanitizer
+# The core's readers (off ply ply_gz obj scene atlas height) are libFuzzer targets of the sanitizer
 # build (build-sanitize, built here if needed by scripts/test-sanitize.sh's configuration:
 # Debian's clang with libclang-rt-14-dev); stl (VTK's reader behind tcMeshReader) and cli (the
 # `trichart` command line) are in-process loops of the main build (build/, scripts/setup.sh).
@@ -17,12 +17,12 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off ply ply_gz obj scene atlas stl cli)
+[ ${#targets[@]} -gt 0 ] || targets=(off ply ply_gz obj scene atlas height stl cli)
 sanitize="${TRICHART_SANITIZE_BUILD_DIR:-$here/build-sanitize}"
 main="${TRICHART_BUILD_DIR:-$here/build}"
 work="${TRICHART_FUZZ_DIR:-${TMPDIR:-/tmp}/trichart-fuzz}"
 fuzz="$here/tests/fuzz"
-libfuzzer_targets=" off ply ply_gz obj scene atlas "
+libfuzzer_targets=" off ply ply_gz obj scene atlas height "
 
 inputs_of() { # the seed corpus and the regression inputs of target $1 that exist
   for d in "$fuzz/corpus/$1" "$fuzz/regressions/$1"; do [ -d "$d" ] && echo "$d"; done

@@ -201,6 +201,23 @@ def stl_seeds():
         write("stl", name, header.ljust(80, b"\0") + struct.pack("<I", len(tris)) + body)
 
 
+def height_seeds():
+    grid = "1 2 3\n4 -9999 6\n7 8 9\n"
+    write("height", "hill.asc", "ncols 3\nnrows 3\nxllcorner 500000\nyllcorner 4100000\n"
+          "cellsize 10\nNODATA_value -9999\n" + grid)
+    write("height", "centre.asc", "NCOLS 2\nNROWS 2\nXLLCENTER 0.5\nYLLCENTER 0.5\n"
+          "DX 1\nDY 2\n0 1\n2 3\n")
+    pixels = b"".join(struct.pack(">H", 100 + k) for k in range(12))
+    write("height", "ramp16.pgm", b"P5\n4 3\n65535\n" + pixels)
+    write("height", "ramp8.pgm", b"P5\n4 3\n255\n" + bytes(range(12)))
+    write("height", "ramp_ascii.pgm", "P2\n3 2\n9\n0 1 2\n3 4 5\n")
+    row = bytes([0, 64, 128, 255])  # 4 x 2, 8-bit grey, rows padded to 4 bytes
+    palette = b"".join(bytes([g, g, g, 0]) for g in range(256))
+    header = struct.pack("<2sIHHI", b"BM", 14 + 40 + 1024 + 8, 0, 0, 14 + 40 + 1024)
+    info = struct.pack("<IiiHHIIiiII", 40, 4, 2, 1, 8, 0, 8, 2835, 2835, 256, 256)
+    write("height", "grey.bmp", header + info + palette + row + row)
+
+
 def have_trichart():
     try:
         import trichart  # noqa: F401
@@ -255,7 +272,7 @@ def cli_seeds():
 
 
 def main():
-    for target in ("off", "ply", "ply_gz", "obj", "scene", "stl", "cli") + \
+    for target in ("off", "ply", "ply_gz", "obj", "scene", "stl", "cli", "height") + \
             (("atlas",) if have_trichart() else ()):
         folder = os.path.join(CORPUS, target)
         if target == "atlas":
@@ -272,6 +289,7 @@ def main():
     stl_seeds()
     atlas_seeds()
     cli_seeds()
+    height_seeds()
 
 
 if __name__ == "__main__":

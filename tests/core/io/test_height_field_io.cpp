@@ -178,6 +178,22 @@ TEST_F(HeightFieldIo, WhatIsNoHeightFieldIsRefusedWithTheReason)
   }
 }
 
+TEST_F(HeightFieldIo, AHeaderDeclaringMoreCellsThanFitIsRefusedBeforeTheRead)
+{
+  // 46,000^2 cells: 135 GB of grid, declared in a 70-byte file.
+  const std::string path =
+    write("huge.asc", "ncols 46000\nnrows 46000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n");
+  try
+  {
+    tc::readHeightField(path);
+    FAIL() << "a huge declared raster was read";
+  }
+  catch (const tc::InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("2116000000 cells"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(HeightFieldIo, TheExtensionsAreTheRasterFormats)
 {
   EXPECT_TRUE(tc::isHeightFieldFile("dem.TIF"));

@@ -4,6 +4,7 @@
 #include "io/height_field_georef.h"
 #include "tc/common/errors.h"
 #include "tc/common/file_names.h"
+#include "tc/common/resources.h"
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
@@ -154,6 +155,21 @@ void HeightsToMetres(HeightField& field)
   }
   field.heightUnit = "m";
 }
+/// Refuses a raster whose grid would not fit in the memory the system can give: a damaged or
+/// mistaken header must not make the reader allocate until the process is killed.
+void CheckMemory(const std::string& path, int64_t cells)
+{
+  // Per cell: the height read (8 bytes), its point id (4), its point (24 + 4 for Elevation)
+  // and two triangles (24).
+  const int64_t bytes = cells * 64;
+  const int64_t available = availableMemory();
+  if (available > 0 && bytes > available)
+  {
+    throw InputError("'" + path + "' has " + std::to_string(cells) + " cells, whose grid needs " +
+      std::to_string(bytes >> 20) + " MB but " + std::to_string(available >> 20) +
+      " MB are available; crop or resample it first (gdal_translate -outsize)");
+  }
+}
 } // namespace
 
 const char* heightFieldExtensions()
@@ -199,6 +215,7 @@ HeightField readHeightField(const std::string& path, const Progress& progress)
     throw InputError("'" + path + "' has " + std::to_string(field.columns * field.rows) +
       " cells, more than a mesh can index (2^31 - 1); crop or resample it (gdal_translate)");
   }
+  CheckMemory(path, field.columns * field.rows);
   GDALRasterBand& band = *dataset->GetRasterBand(1);
   if (dataset->GetRasterCount() > 1)
   {
