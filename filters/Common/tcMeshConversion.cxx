@@ -382,6 +382,12 @@ std::string GetTextField(vtkFieldData* fd, const char* name)
   return text;
 }
 
+std::string GetTextLine(vtkFieldData* fd, const char* name)
+{
+  auto* lines = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  return lines && lines->GetNumberOfValues() > 0 ? lines->GetValue(0) : std::string();
+}
+
 namespace
 {
 bool readIntField(

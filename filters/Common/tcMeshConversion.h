@@ -94,8 +94,12 @@ bool ReadOptionalIntArray(vtkDataSetAttributes* attributes, const char* name, vt
 TRICHARTCOMMON_EXPORT void SetTextField(
   vtkFieldData* fd, const char* name, const std::string& text);
 
-/// Reads back a text field written by SetTextField ("" when absent).
+/// Reads back a text field written by SetTextField ("" when absent), each line ended by "\n".
 TRICHARTCOMMON_EXPORT std::string GetTextField(vtkFieldData* fd, const char* name);
+
+/// The first line of a text field, without its end ("" when absent): a one-line field such as
+/// a name.
+TRICHARTCOMMON_EXPORT std::string GetTextLine(vtkFieldData* fd, const char* name);
 
 /// Adds a base-colour texture as tcMeshReader gives it: the field arrays BaseColorTexture
 /// (`rgba`, 4 unsigned chars per texel, width x height tuples, row 0 the bottom),

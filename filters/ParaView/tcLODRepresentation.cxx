@@ -158,14 +158,9 @@ int tcLODRepresentation::RequestData(
   // An update of the same, unmodified input keeps the conversion rather than converting again.
   const auto stamp = input ? AtlasStamp(input) : std::pair<vtkMTimeType, std::string>();
   const bool unchanged = input && this->Atlas && input == this->Input && stamp == this->InputStamp;
-  // A skinned atlas plays the animation its reader names (the first when none is named); a
-  // text field reads back line by line, each line ended.
-  std::string animation =
-    input ? tcvtk::GetTextField(input->GetFieldData(), tc::kAnimationName) : "";
-  if (!animation.empty() && animation.back() == '\n')
-  {
-    animation.pop_back();
-  }
+  // A skinned atlas plays the animation its reader names (the first when none is named).
+  const std::string animation =
+    input ? tcvtk::GetTextLine(input->GetFieldData(), tc::kAnimationName) : "";
   this->Mapper->SetAnimation(animation.c_str());
   if (!unchanged)
   {

@@ -126,6 +126,7 @@ int TestLinearBlendSkinning(int, char*[])
   TC_CHECK(check, p[1][0] == 2.0 && p[1][1] == 0.0);
   TC_CHECK(check, std::abs(p[2][0] - 1.5) < 1e-12 && std::abs(p[2][1] - 0.5) < 1e-12);
   TC_CHECK(check, tcvtk::GetTextField(posed->GetFieldData(), tc::kAnimationName) == "turn\n");
+  TC_CHECK(check, tcvtk::GetTextLine(posed->GetFieldData(), tc::kAnimationName) == "turn");
   // Half-way in time, an eighth of a turn; by name as by index.
   pose->SetTime(0.5);
   pose->SetAnimation("turn");
