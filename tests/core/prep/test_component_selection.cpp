@@ -8,6 +8,8 @@
 
 #include "test_data.h"
 
+#include "mesh_checks.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -145,34 +147,6 @@ std::vector<int64_t> range(int64_t first, int64_t n)
   return ids;
 }
 
-/// True if every edge has 2 faces that run through it in opposite directions.
-bool closedAndOriented(const tc::TriMesh& mesh)
-{
-  const tc::EdgeTable edges = tc::buildEdgeTable(mesh.triangles);
-  for (int64_t e = 0; e < edges.numEdges(); ++e)
-  {
-    if (edges.valence(e) != 2)
-    {
-      return false;
-    }
-    int forward = 0;
-    for (int64_t k = edges.faceOffsets[e]; k < edges.faceOffsets[e + 1]; ++k)
-    {
-      const int64_t f = edges.edgeFaces[k];
-      for (int i = 0; i < 3; ++i)
-      {
-        forward += mesh.triangles[3 * f + i] == edges.vertices[2 * e] &&
-          mesh.triangles[3 * f + (i + 1) % 3] == edges.vertices[2 * e + 1];
-      }
-    }
-    if (forward != 1)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 /// Six times the signed volume of a mesh.
 double volume6(const tc::TriMesh& mesh)
 {
@@ -263,7 +237,7 @@ TEST(PreparationComponents, KeepLargestComponentLeavesTheLargeBoxClosedAndOutwar
   EXPECT_EQ(r.report.components, 1);
   EXPECT_EQ(r.report.boundaryEdges, 0);
   EXPECT_EQ(r.componentId, std::vector<int32_t>(108, 0));
-  EXPECT_TRUE(closedAndOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh, true));
   EXPECT_NEAR(volume6(r.mesh), 6.0 * 8.0, 1e-9);
   EXPECT_TRUE(tc::closedManifold(r.report, options));
   EXPECT_TRUE(r.report.changed());
@@ -299,7 +273,7 @@ TEST(PreparationComponents, MinComponentTrianglesDropsWhatIsBelowIt)
   EXPECT_EQ(r.report.droppedComponentPoints, 3);
   EXPECT_EQ(r.report.components, 2);
   EXPECT_EQ(r.report.closedComponents, 2);
-  EXPECT_TRUE(closedAndOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh, true));
   EXPECT_TRUE(tc::closedManifold(r.report, options));
   expectPointsBalance(r.report);
   EXPECT_TRUE(contains(r.report.text(),
@@ -364,7 +338,7 @@ TEST(PreparationComponents, DropNonOrientableLeavesTheClosedBox)
   EXPECT_EQ(r.report.droppedComponentPoints, 24);
   EXPECT_EQ(r.report.nonOrientableComponents, 0);
   EXPECT_EQ(r.report.components, 1);
-  EXPECT_TRUE(closedAndOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh, true));
   EXPECT_GT(volume6(r.mesh), 0.0);
   EXPECT_TRUE(tc::closedManifold(r.report, options));
   expectPointsBalance(r.report);
@@ -392,7 +366,7 @@ TEST(PreparationComponents, DropNonOrientableLetsHoleFillingRun)
   EXPECT_EQ(r.report.droppedNonOrientable, 1);
   EXPECT_EQ(r.report.filledHoles, 1);
   EXPECT_EQ(r.report.boundaryEdges, 0);
-  EXPECT_TRUE(closedAndOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh, true));
   EXPECT_GT(volume6(r.mesh), 0.0);
   EXPECT_TRUE(tc::closedManifold(r.report, options));
   expectPointsBalance(r.report);
@@ -445,7 +419,7 @@ tc::PreparationResult prepareScan(
   std::printf("%s: %.2f s\n%s", relative.c_str(), seconds, r.report.text().c_str());
   EXPECT_TRUE(tc::closedManifold(r.report, options))
     << tc::closedManifoldRepairs(r.report, options);
-  EXPECT_TRUE(closedAndOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh, true));
   expectPointsBalance(r.report);
   return r;
 }

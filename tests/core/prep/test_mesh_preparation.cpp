@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tc/common/errors.h"
-#include "tc/prep/mesh_preparation.h"
 #include "tc/common/mesh_topology.h"
 #include "tc/io/off_io.h"
+#include "tc/prep/mesh_preparation.h"
 
 #include "analytic_meshes.h"
 #include "test_data.h"
 #include "test_progress.h"
+
+#include "mesh_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -90,34 +92,6 @@ int64_t maxEdgeValence(const tc::TriMesh& mesh)
     most = std::max(most, edges.valence(e));
   }
   return most;
-}
-
-/// True if every edge with two faces is run through in opposite directions by them.
-bool consistentlyOriented(const tc::TriMesh& mesh)
-{
-  const tc::EdgeTable edges = tc::buildEdgeTable(mesh.triangles);
-  for (int64_t e = 0; e < edges.numEdges(); ++e)
-  {
-    if (edges.valence(e) != 2)
-    {
-      continue;
-    }
-    int forward = 0;
-    for (int64_t k = edges.faceOffsets[e]; k < edges.faceOffsets[e + 1]; ++k)
-    {
-      const int64_t f = edges.edgeFaces[k];
-      for (int i = 0; i < 3; ++i)
-      {
-        forward += mesh.triangles[3 * f + i] == edges.vertices[2 * e] &&
-          mesh.triangles[3 * f + (i + 1) % 3] == edges.vertices[2 * e + 1];
-      }
-    }
-    if (forward != 1)
-    {
-      return false;
-    }
-  }
-  return true;
 }
 
 /// Number of fans around each vertex: its faces, joined across edges that have 2 faces.
@@ -506,7 +480,7 @@ TEST(Preparation, HalfFlippedClosedMeshIsReorientedOutward)
     }
     const tc::PreparationResult result = tc::prepareMesh(soup);
     EXPECT_EQ(result.report.flippedFaces, flipped);
-    EXPECT_TRUE(consistentlyOriented(result.mesh));
+    EXPECT_TRUE(tctest::consistentlyOriented(result.mesh));
     EXPECT_GT(signedVolume(result.mesh), 0.0);
     EXPECT_EQ(result.report.nonOrientableComponents, 0);
 
@@ -559,7 +533,7 @@ TEST(Preparation, OpenMeshIsOrientedLikeItsFirstFace)
   }
   const tc::PreparationResult result = tc::prepareMesh(makeSoup(points, polygons));
   EXPECT_EQ(result.report.flippedFaces, flipped);
-  EXPECT_TRUE(consistentlyOriented(result.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(result.mesh));
   EXPECT_GT(faceNormal(result.mesh, 0)[2], 0.0);
   EXPECT_EQ(result.report.boundaryEdges, 16);
   EXPECT_EQ(result.report.closedComponents, 0);
@@ -640,7 +614,7 @@ TEST(Preparation, NonManifoldEdgeIsFlaggedAndSplit)
   EXPECT_EQ(split.mesh.triangles[3 * 1 + 1], 6);
   EXPECT_EQ(split.report.components, 2);
   EXPECT_EQ(split.report.boundaryEdges, 7);
-  EXPECT_TRUE(consistentlyOriented(split.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(split.mesh));
 }
 
 TEST(Preparation, FinOnAClosedSurfaceIsSplitOff)
@@ -660,7 +634,7 @@ TEST(Preparation, FinOnAClosedSurfaceIsSplitOff)
   const tc::PreparationResult split = tc::prepareMesh(soup, options);
   expectManifold(split.mesh);
   EXPECT_EQ(split.report.splitVertices, 1);
-  EXPECT_TRUE(consistentlyOriented(split.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(split.mesh));
   EXPECT_EQ(split.report.closedComponents, 0);
 }
 
@@ -741,7 +715,7 @@ TEST(Preparation, SplitMakesRandomSoupsManifold)
     expectManifold(result.mesh);
     if (result.report.nonOrientableComponents == 0)
     {
-      EXPECT_TRUE(consistentlyOriented(result.mesh));
+      EXPECT_TRUE(tctest::consistentlyOriented(result.mesh));
     }
     const tc::PreparationReport& report = result.report;
     EXPECT_EQ(report.inputPoints,
@@ -803,7 +777,7 @@ TEST(Preparation, TeapotIsOpenWithSeveralComponents)
   EXPECT_EQ(result.report.boundaryEdges, 64);
   EXPECT_EQ(result.report.closedComponents, 0);
   EXPECT_EQ(result.mesh.numTriangles(), 992);
-  EXPECT_TRUE(consistentlyOriented(result.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(result.mesh));
   int64_t boundary = 0;
   for (uint8_t b : result.boundaryVertex)
   {
@@ -961,7 +935,7 @@ TEST(Preparation, HolesAreClosedByFairedPatchesWhenAsked)
   EXPECT_TRUE(report.changed());
   EXPECT_TRUE(contains(report.text(), "filled 2 holes"));
   expectManifold(r.mesh);
-  EXPECT_TRUE(consistentlyOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh));
   EXPECT_GT(signedVolume(r.mesh), 0.0);
   // A closed genus-0 surface: V - E + F = 2.
   EXPECT_EQ(
@@ -1057,8 +1031,8 @@ tc::PolygonSoup sphereWithSlivers()
   std::vector<std::array<int64_t, 3>> faces;
   for (int64_t f = 0; f < sphere.numTriangles(); ++f)
   {
-    faces.push_back({ sphere.triangles[3 * f], sphere.triangles[3 * f + 1],
-      sphere.triangles[3 * f + 2] });
+    faces.push_back(
+      { sphere.triangles[3 * f], sphere.triangles[3 * f + 1], sphere.triangles[3 * f + 2] });
   }
   tc::PolygonSoup soup;
   soup.points = sphere.points;
@@ -1128,9 +1102,8 @@ int64_t countSlivers(const tc::TriMesh& mesh)
       len[k] = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     }
     std::sort(len, len + 3);
-    const double largestAngle = std::acos(
-      std::clamp((len[0] * len[0] + len[1] * len[1] - len[2] * len[2]) / (2 * len[0] * len[1]),
-        -1.0, 1.0));
+    const double largestAngle = std::acos(std::clamp(
+      (len[0] * len[0] + len[1] * len[1] - len[2] * len[2]) / (2 * len[0] * len[1]), -1.0, 1.0));
     count += len[2] > 10 * len[0] || largestAngle > 170.0 * M_PI / 180.0 ? 1 : 0;
   }
   return count;
@@ -1162,7 +1135,7 @@ TEST(Preparation, SliversAreCollapsedAndFlippedWhenAsked)
     << report.text();
   EXPECT_FALSE(contains(report.text(), "left")) << report.text();
   expectManifold(r.mesh);
-  EXPECT_TRUE(consistentlyOriented(r.mesh));
+  EXPECT_TRUE(tctest::consistentlyOriented(r.mesh));
   EXPECT_EQ(report.closedComponents, 1);
   EXPECT_EQ(
     r.mesh.numPoints() - tc::buildEdgeTable(r.mesh.triangles).numEdges() + r.mesh.numTriangles(),

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "tc/common/mesh.h"
+#include "tc/common/mesh_topology.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,39 @@
 
 namespace tctest
 {
+/// True if every edge with two faces is run through in opposite directions by them; with
+/// `closed`, also every edge has exactly two faces.
+inline bool consistentlyOriented(const tc::TriMesh& mesh, bool closed = false)
+{
+  const tc::EdgeTable edges = tc::buildEdgeTable(mesh.triangles);
+  for (int64_t e = 0; e < edges.numEdges(); ++e)
+  {
+    if (edges.valence(e) != 2)
+    {
+      if (closed)
+      {
+        return false;
+      }
+      continue;
+    }
+    int forward = 0;
+    for (int64_t k = edges.faceOffsets[e]; k < edges.faceOffsets[e + 1]; ++k)
+    {
+      const int64_t f = edges.edgeFaces[k];
+      for (int i = 0; i < 3; ++i)
+      {
+        forward += mesh.triangles[3 * f + i] == edges.vertices[2 * e] &&
+          mesh.triangles[3 * f + (i + 1) % 3] == edges.vertices[2 * e + 1];
+      }
+    }
+    if (forward != 1)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// The first way `mesh` fails to be a closed, oriented 2-manifold without degenerate triangles
 /// and isolated points, or "" when it is one; `euler` receives V - E + F. With `flat`, triangles
 /// of three distinct points without area are allowed and counted there: the lattice an atlas's
