@@ -18,7 +18,8 @@ from trichart import tcArrayNames  # noqa: E402  (the array names, from the wrap
 for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature",
              "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex",
              "TriChartPathTracing", "TriChartGeometryImages", "TriChartGeometryImageMesh",
-             "TriChartSurfaceDistance", "TriChartAtlasReader", "TriChartHeightFieldReader"):
+             "TriChartSurfaceDistance", "TriChartAtlasReader", "TriChartHeightFieldReader",
+             "TriChartMultilevelMesh"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)
