@@ -42,11 +42,12 @@ vtk_module_scan(
     ${CMAKE_SOURCE_DIR}/filters/GeometryImages/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Rendering/vtk.module
     ${CMAKE_SOURCE_DIR}/filters/Skinning/vtk.module
+    ${CMAKE_SOURCE_DIR}/filters/Multilevel/vtk.module
     ${_tc_paraview_module_files}
   REQUEST_MODULES
     TriChart::Common TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features
     TriChart::BaseComplex TriChart::GeometryImages TriChart::Rendering TriChart::Skinning
-    ${_tc_paraview_modules}
+    TriChart::Multilevel ${_tc_paraview_modules}
   PROVIDES_MODULES _tc_modules
   ENABLE_TESTS OFF)
 vtk_module_build(
@@ -65,7 +66,8 @@ vtk_module_build(
 # representation (wrapped for pvpython, whose paraview.modules it imports).
 set(TRICHART_FILTER_MODULES
   TriChart::IO TriChart::Preparation TriChart::Curvature TriChart::Features TriChart::BaseComplex
-  TriChart::GeometryImages TriChart::Rendering TriChart::Skinning ${_tc_paraview_modules})
+  TriChart::GeometryImages TriChart::Rendering TriChart::Skinning TriChart::Multilevel
+  ${_tc_paraview_modules})
 
 if (TRICHART_WRAP_PYTHON)
   execute_process(

@@ -19,6 +19,7 @@ from .TriChartFeatures import *  # noqa: F401,F403
 from .TriChartBaseComplex import *  # noqa: F401,F403
 from .TriChartGeometryImages import *  # noqa: F401,F403
 from .TriChartSkinning import *  # noqa: F401,F403
+from .TriChartMultilevel import *  # noqa: F401,F403
 import vtkmodules.vtkRenderingCore  # noqa: E402,F401  (before the mapper's module, as above)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
 from .TriChartRendering import *  # noqa: E402,F401,F403
@@ -36,7 +37,7 @@ from .pipeline import (read_mesh, prepare, curvature, cluster, refine_features, 
                        UntraceableError, ResourceError, estimate_memory, set_max_threads,
                        write_mesh, export_gltf, simplify_qem, MESH_EXTENSIONS,
                        base_color_texture, read_skeleton, read_frames, time_steps, animation_names,
-                       pose, deformation_clustering)
+                       pose, deformation_clustering, multilevel_mesh)
 
 
 def plugin_path():

@@ -10,7 +10,7 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 from . import (TriChartBaseComplex, TriChartCurvature, TriChartFeatures, TriChartSkinning,
-               TriChartGeometryImages, TriChartIO, TriChartPreparation)
+               TriChartGeometryImages, TriChartIO, TriChartMultilevel, TriChartPreparation)
 
 
 class TriChartError(RuntimeError):
@@ -434,6 +434,18 @@ def _multiblock(algorithm, port=0):
     copy = vtkMultiBlockDataSet()
     copy.ShallowCopy(algorithm.GetOutputDataObject(port))
     return copy
+
+
+def multilevel_mesh(mesh, progress=None, **options):
+    """tcMultilevelMesh on a triangle mesh; returns the multiblock of its levels (Kircher and
+    Garland 2005), finest first: block k the mesh of level k with point arrays ParentId,
+    ClusterSize and QuadricError, block 0 the input with ClusterId1 .. ClusterIdn too.
+
+    Options: branching_factor (default 8), max_levels (0: no limit), coarsest_vertices,
+    link_condition (default True: level 1 homeomorphic to the input).
+    """
+    f = _run_on(TriChartMultilevel.tcMultilevelMesh(), mesh, "multilevel", progress, options)
+    return _multiblock(f)
 
 
 def geometry_images(patches, resampled_arrays=(), progress=None, **options):

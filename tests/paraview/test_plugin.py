@@ -19,7 +19,7 @@ for name in ("TriChartMeshReader", "TriChartMeshPreparation", "TriChartCurvature
              "TriChartSpectralClustering", "TriChartFeatureRefinement", "TriChartBaseComplex",
              "TriChartPathTracing", "TriChartGeometryImages", "TriChartGeometryImageMesh",
              "TriChartSurfaceDistance", "TriChartAtlasReader", "TriChartHeightFieldReader",
-             "TriChartDeformationClustering"):
+             "TriChartDeformationClustering", "TriChartMultilevelMesh"):
     check(name in globals(), f"proxy {name} is created by the plugin")
 if failures:
     sys.exit(1)

@@ -101,6 +101,14 @@ constexpr const char* kRelativeRmsDistance = "RelativeRmsDistance";   ///< field
 constexpr const char* kReferenceDiagonal =
   "ReferenceDiagonal"; ///< field: reference's bbox diagonal
 
+// tcMultilevelMesh (a multiblock, one vtkPolyData per level, finest first)
+constexpr const char* kParentId = "ParentId";       ///< point: its vertex in the next coarser level
+constexpr const char* kClusterSize = "ClusterSize"; ///< point: M0 vertices in its cluster
+constexpr const char* kQuadricError = "QuadricError"; ///< point: its quadric at its position
+/// point of level 0: "ClusterId<k>" holds the vertex of level k each M0 vertex lies under
+constexpr const char* kLevelClusterIdPrefix = "ClusterId";
+constexpr const char* kLevelBlockPrefix = "Level "; ///< block k is "Level k"
+
 // tcMeshReader
 constexpr const char* kReaderReport = "ReaderReport"; ///< field: what was read
 constexpr const char* kSceneMeshId = "SceneMeshId";   ///< cell: mesh of a scene file (glTF, FBX...)
