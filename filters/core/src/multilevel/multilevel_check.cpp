@@ -4,7 +4,7 @@
 // faces, and the topology of each level.
 #include "multilevel/multilevel_internal.h"
 
-#include "prep/union_find.h"
+#include "detail/union_find.h"
 
 #include <algorithm>
 #include <array>

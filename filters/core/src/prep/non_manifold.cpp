@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "prep/non_manifold.h"
 
+#include "detail/union_find.h"
 #include "prep/face_sides.h"
-#include "prep/union_find.h"
 
 #include <algorithm>
 #include <array>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "prep/orientation.h"
 
+#include "detail/union_find.h"
 #include "prep/face_sides.h"
 #include "prep/points.h"
-#include "prep/union_find.h"
 
 #include <utility>
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file union_find.h
-/// Union-find for the mesh preparation (internal): corners into fans (non-manifold detection and
-/// splitting), faces into components and orientation patches. The root of a set is its lowest
+/// Union-find (internal): the mesh preparation's corners into fans (non-manifold detection and
+/// splitting), faces into components and orientation patches; the multilevel mesh's clusters
+/// into their connected parts. The root of a set is its lowest
 /// element, so results do not depend on the order of the unions.
 #pragma once
 
