@@ -23,6 +23,9 @@
  * diagonal; RigidFitRms binds each point to its own cluster's bone alone). Output port 1: the
  * cluster boundaries as polylines (point array InputPointId), the feature lines that keep
  * charts from straddling two bones.
+ *
+ * Behind tcMeshReader, turn its ProxyBones off: the reader would fit the same bones for its
+ * rest frame, and this filter's skin replaces them.
  */
 #ifndef tcDeformationClustering_h
 #define tcDeformationClustering_h
