@@ -128,7 +128,7 @@ void setRestTransform(tinygltf::Node& node, const Matrix4& rest, bool animated)
   const Eigen::Vector3d s = scaling.diagonal();
   const Eigen::Affine3d trs = Eigen::Translation3d(m.translation()) * q * Eigen::Scaling(s);
   const double size = std::max(1.0, m.matrix().cwiseAbs().maxCoeff());
-  if (!animated && !(trs.matrix() - m.matrix()).cwiseAbs().maxCoeff() <= 1e-12 * size)
+  if (!animated && !((trs.matrix() - m.matrix()).cwiseAbs().maxCoeff() <= 1e-12 * size))
   {
     node.matrix = columnMajor(rest);
     return;
