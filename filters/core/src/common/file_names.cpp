@@ -2,6 +2,7 @@
 #include "tc/common/file_names.h"
 
 #include <cctype>
+#include <sstream>
 
 namespace tc
 {
@@ -21,5 +22,20 @@ bool hasExtension(const std::string& path, const std::string& extension)
     }
   }
   return true;
+}
+
+bool hasOneOfExtensions(const std::string& path, const char* extensions)
+{
+  std::istringstream list(extensions);
+  std::string ext;
+  while (list >> ext)
+  {
+    ext = "." + ext;
+    if (path.size() > ext.size() && hasExtension(path, ext))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 } // namespace tc

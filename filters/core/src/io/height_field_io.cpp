@@ -179,17 +179,7 @@ const char* heightFieldExtensions()
 
 bool isHeightFieldFile(const std::string& path)
 {
-  std::istringstream extensions(kExtensions);
-  std::string ext;
-  while (extensions >> ext)
-  {
-    ext = "." + ext;
-    if (path.size() > ext.size() && hasExtension(path, ext))
-    {
-      return true;
-    }
-  }
-  return false;
+  return hasOneOfExtensions(path, kExtensions);
 }
 
 HeightField readHeightField(const std::string& path, const Progress& progress)

@@ -338,17 +338,7 @@ const char* sceneExtensions()
 
 bool isSceneFile(const std::string& path)
 {
-  std::istringstream extensions(kExtensions);
-  std::string ext;
-  while (extensions >> ext)
-  {
-    ext = "." + ext;
-    if (path.size() > ext.size() && hasExtension(path, ext)) // a name, not the extension alone
-    {
-      return true;
-    }
-  }
-  return false;
+  return hasOneOfExtensions(path, kExtensions);
 }
 
 Scene readScene(const std::string& path, const Progress& progress)

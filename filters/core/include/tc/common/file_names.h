@@ -10,4 +10,8 @@ namespace tc
 {
 /// Whether `path` ends with `extension` (".glb", ".ply.gz"), ignoring ASCII case.
 bool hasExtension(const std::string& path, const std::string& extension);
+
+/// Whether `path` is a name (not the extension alone) ending with one of `extensions`, given
+/// space-separated without dots ("glb gltf fbx"), ignoring ASCII case.
+bool hasOneOfExtensions(const std::string& path, const char* extensions);
 } // namespace tc
